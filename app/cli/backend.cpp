@@ -1,0 +1,60 @@
+#include "cli/backend.hpp"
+
+#include "core/cpu_simulator.hpp"
+#include "core/errors.hpp"
+#include "gl/gpu_simulator.hpp"
+
+namespace morphogen::cli {
+
+BackendChoice parseBackendChoice(const std::string& text) {
+    if (text == "auto")
+        return BackendChoice::Auto;
+    if (text == "gpu")
+        return BackendChoice::Gpu;
+    if (text == "cpu")
+        return BackendChoice::Cpu;
+    throw InputError("--backend '" + text + "' is unknown (accepted: auto, gpu, cpu)");
+}
+
+std::optional<gl::ContextKind> parseContextFlag(const std::string& text) {
+    if (text.empty())
+        return std::nullopt;
+    auto kind = gl::parseContextKind(text);
+    if (!kind)
+        throw InputError("--context '" + text + "' is unknown (accepted: egl, osmesa, glfw)");
+    return kind;
+}
+
+Backend makeBackend(const Session& session, BackendChoice choice,
+                    std::optional<gl::ContextKind> contextKind) {
+    Backend backend;
+    if (choice == BackendChoice::Cpu) {
+        backend.simulator = std::make_unique<CpuSimulator>(session);
+        backend.reason = "cpu backend (requested)";
+        return backend;
+    }
+    try {
+        backend.context = gl::createHeadlessContext(contextKind);
+    } catch (const std::exception& e) {
+        if (choice == BackendChoice::Gpu)
+            throw;
+        backend.simulator = std::make_unique<CpuSimulator>(session);
+        backend.reason = std::string("cpu backend (auto: no GL context: ") + e.what() + ")";
+        return backend;
+    }
+    const std::string renderer = backend.context->renderer();
+    const std::string where = gl::toString(backend.context->kind()) + ", " + renderer;
+    if (choice == BackendChoice::Auto && backend.context->isSoftwareRenderer()) {
+        backend.context.reset();
+        backend.simulator = std::make_unique<CpuSimulator>(session);
+        backend.reason = "cpu backend (auto: the GL renderer is the software rasterizer " +
+                         renderer + ", slower than the CPU backend; --backend gpu forces it)";
+        return backend;
+    }
+    backend.simulator = std::make_unique<gl::GpuSimulator>(session);
+    backend.reason = std::string("gpu backend (") +
+                     (choice == BackendChoice::Gpu ? "requested" : "auto") + ": " + where + ")";
+    return backend;
+}
+
+} // namespace morphogen::cli

@@ -1,0 +1,14 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace morphogen::cli {
+
+// Each subcommand registers its flags and a callback that does the work. The
+// callbacks throw morphogen::InputError for bad input (exit 2) and other
+// exceptions for everything else (exit 1).
+void addRenderCommand(CLI::App& app);
+void addPresetsCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
+
+} // namespace morphogen::cli

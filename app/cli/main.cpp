@@ -1,0 +1,34 @@
+// morphogen: reaction-diffusion texture designer, command line.
+
+#include <cstdio>
+#include <exception>
+
+#include "cli/commands.hpp"
+#include "core/errors.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{"Morphogen: reaction-diffusion textures (Turing, Gray-Scott) on the GPU or CPU",
+                 "morphogen"};
+    app.require_subcommand(1);
+    morphogen::cli::addRenderCommand(app);
+    morphogen::cli::addPresetsCommand(app);
+    morphogen::cli::addBenchCommand(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // Unknown flags, missing values and the like are bad input.
+        app.exit(e);
+        return 2;
+    } catch (const morphogen::InputError& e) {
+        std::fprintf(stderr, "morphogen: error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "morphogen: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,210 @@
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "cli/backend.hpp"
+#include "cli/commands.hpp"
+#include "cli/progress.hpp"
+#include "core/colormap.hpp"
+#include "core/errors.hpp"
+#include "core/image_io.hpp"
+#include "core/initial_condition.hpp"
+#include "core/runner.hpp"
+#include "core/session.hpp"
+
+namespace morphogen::cli {
+
+namespace {
+
+constexpr const char* kDefaultPreset = "gs_coral";
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void onInterrupt(int) {
+    g_interrupted.store(true);
+    // A second Ctrl-C ends the process the usual way.
+    std::signal(SIGINT, SIG_DFL);
+}
+
+struct RenderFlags {
+    std::string preset;
+    std::string sessionFile;
+    std::string out;
+    std::string sessionOut;
+    std::string size;
+    int steps = -1;
+    long long seed = -1;
+    double dt = -1;
+    std::vector<std::string> params;
+    std::string edges;
+    std::string stencil;
+    std::string backend = "auto";
+    std::string context;
+    std::string colormap;
+    std::string chemical;
+    int bitDepth = 8;
+};
+
+void parseSize(const std::string& text, Session& s) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    std::istringstream in(text);
+    bool ok = false;
+    if (text.find('x') != std::string::npos)
+        ok = bool(in >> w >> x >> h) && x == 'x' && !(in >> extra);
+    else {
+        ok = bool(in >> w) && !(in >> extra);
+        h = w;
+    }
+    if (!ok || w < 1 || h < 1 || w > kMaxGridSide || h > kMaxGridSide)
+        throw InputError("--size '" + text + "': expected N or WxH with sides in 1.." +
+                         std::to_string(kMaxGridSide));
+    s.width = w;
+    s.height = h;
+}
+
+Session buildSession(const RenderFlags& f) {
+    if (!f.preset.empty() && !f.sessionFile.empty())
+        throw InputError("--preset and --session are exclusive: give one");
+    Session s = !f.sessionFile.empty() ? loadSessionFile(f.sessionFile)
+                                       : loadPreset(f.preset.empty() ? kDefaultPreset : f.preset);
+    if (!f.size.empty())
+        parseSize(f.size, s);
+    if (f.steps >= 0)
+        s.steps = f.steps;
+    if (f.seed >= 0)
+        s.seed = std::uint64_t(f.seed);
+    if (f.dt > 0)
+        s.dt = float(f.dt);
+    else if (f.dt == 0 || (f.dt < 0 && f.dt != -1))
+        throw InputError("--dt must be positive");
+    for (const std::string& p : f.params)
+        applyParamOverride(s, p);
+    if (!f.edges.empty()) {
+        if (f.edges == "periodic")
+            s.edges = EdgeMode::Periodic;
+        else if (f.edges == "clamped")
+            s.edges = EdgeMode::Clamped;
+        else
+            throw InputError("--edges '" + f.edges + "' is unknown (accepted: periodic, clamped)");
+    }
+    if (!f.stencil.empty()) {
+        if (f.stencil == "5-point" || f.stencil == "5")
+            s.stencil = Stencil::FivePoint;
+        else if (f.stencil == "9-point" || f.stencil == "9")
+            s.stencil = Stencil::NinePoint;
+        else
+            throw InputError("--stencil '" + f.stencil + "' is unknown (accepted: 5-point, 9-point)");
+    }
+    if (!f.colormap.empty())
+        s.colormap.name = f.colormap;
+    if (!f.chemical.empty())
+        s.colormap.chemical = f.chemical;
+    checkColormapName(s.colormap.name);
+    colormapChemical(s.colormap, s.reactionModel());
+    validateSession(s, f.sessionFile.empty() ? "preset " + s.name : f.sessionFile);
+    return s;
+}
+
+std::string defaultSessionOut(const std::string& out) {
+    std::filesystem::path p(out);
+    return p.replace_extension(".json").string();
+}
+
+void render(const RenderFlags& f) {
+    Session session = buildSession(f);
+    const ImageFormat format = imageFormatForPath(f.out);
+    if (f.bitDepth != 8 && f.bitDepth != 16)
+        throw InputError("--bit-depth " + std::to_string(f.bitDepth) + " is not supported (accepted: 8, 16)");
+    const std::string sessionOut = f.sessionOut.empty() ? defaultSessionOut(f.out) : f.sessionOut;
+    if (sessionOut == f.out)
+        throw InputError("--session-out must differ from --out");
+    // Fail before a long run, not after it.
+    checkWritable(f.out);
+    checkWritable(sessionOut);
+
+    Backend backend = makeBackend(session, parseBackendChoice(f.backend), parseContextFlag(f.context));
+    std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
+    const ReactionModel& model = session.reactionModel();
+    backend.simulator->setState(
+        makeInitialState(session.init, model, session.params, session.width, session.height,
+                         session.seed));
+
+    g_interrupted.store(false);
+    auto previous = std::signal(SIGINT, onInterrupt);
+    Progress progress("render " + (session.name.empty() ? std::string("session") : session.name),
+                      session.steps);
+    RunOptions options;
+    options.progress = [&](int done, int) { progress.update(done); };
+    options.cancel = &g_interrupted;
+    // Chunks bound how long Ctrl-C waits and how often blow-up is checked.
+    options.chunk = std::max(50, std::min(500, int(4e7 / double(session.width * session.height))));
+    RunResult result;
+    try {
+        result = runSimulation(*backend.simulator, session, options);
+    } catch (...) {
+        std::signal(SIGINT, previous);
+        throw;
+    }
+    std::signal(SIGINT, previous);
+
+    if (result.cancelled) {
+        progress.finish("interrupted after " + std::to_string(result.stepsDone) +
+                        " steps; writing what is finished");
+        session.steps = result.stepsDone;
+    } else {
+        progress.finish("done: " + std::to_string(result.stepsDone) + " steps");
+    }
+
+    if (format == ImageFormat::Exr) {
+        std::vector<std::string> names;
+        for (const ChemicalSpec& c : model.chemicals())
+            names.push_back(c.name);
+        writeRawImage(f.out, result.state, names);
+    } else {
+        const int chemical = colormapChemical(session.colormap, model);
+        writeRgbImage(f.out, applyColormap(result.state, chemical, session.colormap),
+                      session.width, session.height, f.bitDepth);
+    }
+    saveSessionFile(session, sessionOut);
+    std::printf("%s\n%s\n", f.out.c_str(), sessionOut.c_str());
+    if (result.cancelled)
+        throw std::runtime_error("interrupted; wrote the state after " +
+                                 std::to_string(result.stepsDone) + " steps");
+}
+
+} // namespace
+
+void addRenderCommand(CLI::App& app) {
+    auto flags = std::make_shared<RenderFlags>();
+    CLI::App* cmd = app.add_subcommand(
+        "render", "Run a preset or session headlessly and write an image plus the session JSON "
+                  "that reproduces it");
+    cmd->add_option("--preset", flags->preset,
+                    std::string("built-in preset name (default ") + kDefaultPreset + ")");
+    cmd->add_option("--session", flags->sessionFile, "session JSON file");
+    cmd->add_option("--out", flags->out,
+                    "output image: .png/.tif (colour-mapped) or .exr (raw float chemicals)")
+        ->required();
+    cmd->add_option("--session-out", flags->sessionOut,
+                    "where to write the session JSON (default: --out with .json)");
+    cmd->add_option("--size", flags->size, "grid size N or WxH");
+    cmd->add_option("--steps", flags->steps, "number of steps");
+    cmd->add_option("--seed", flags->seed, "random seed of the initial condition");
+    cmd->add_option("--dt", flags->dt, "time step");
+    cmd->add_option("--param", flags->params, "override a model parameter: name=value (repeatable)");
+    cmd->add_option("--edges", flags->edges, "periodic (seamless) or clamped");
+    cmd->add_option("--stencil", flags->stencil, "Laplacian: 5-point or 9-point");
+    cmd->add_option("--backend", flags->backend, "auto, gpu or cpu (default auto)");
+    cmd->add_option("--context", flags->context,
+                    "GL context: egl or osmesa (default: $MORPHOGEN_CONTEXT, else egl then osmesa)");
+    cmd->add_option("--colormap", flags->colormap,
+                    "grey, two-colour, viridis, magma, inferno, coolwarm");
+    cmd->add_option("--chemical", flags->chemical, "chemical to show (default: the model's)");
+    cmd->add_option("--bit-depth", flags->bitDepth, "8 or 16 bits per channel for PNG/TIFF");
+    cmd->callback([flags] { render(*flags); });
+}
+
+} // namespace morphogen::cli

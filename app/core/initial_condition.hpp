@@ -1,0 +1,34 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "core/state.hpp"
+
+namespace morphogen {
+
+class ReactionModel;
+
+// How the chemicals start. Every cell gets base[c] + U(-noise[c], noise[c]);
+// then, by type, a centred square (McGraw's Gray-Scott start) or random seed
+// spots get `inside[c]` (plus the same noise). Chemicals not named default to 0.
+struct InitialCondition {
+    enum class Type { Noise, CentreSquare, SeedSpots };
+    Type type = Type::Noise;
+    std::map<std::string, float> base;
+    std::map<std::string, float> noise;
+    std::map<std::string, float> inside;
+    float squareFraction = 0.1f; // CentreSquare: side as a fraction of the grid's
+    int spotCount = 10;          // SeedSpots
+    float spotRadius = 3.0f;     // SeedSpots, in cells
+};
+
+std::string toString(InitialCondition::Type type);
+
+// The initial state, a pure function of (condition, model, params, size, seed).
+State makeInitialState(const InitialCondition& init, const ReactionModel& model,
+                       const std::map<std::string, float>& params, int width, int height,
+                       std::uint64_t seed);
+
+} // namespace morphogen

@@ -1,0 +1,40 @@
+#include "core/models/gray_scott.hpp"
+
+namespace morphogen {
+
+GrayScottModel::GrayScottModel() {
+    m_name = "gray_scott";
+    m_description = "Gray-Scott (Pearson's regimes): spots, mitosis, coral, worms, waves";
+    m_chemicals = {{"u", "Du", -std::numeric_limits<float>::infinity(),
+                    std::numeric_limits<float>::infinity(), -1.0f, 2.0f},
+                   {"v", "Dv", -std::numeric_limits<float>::infinity(),
+                    std::numeric_limits<float>::infinity(), -1.0f, 2.0f}};
+    m_params = {{"F", 0.0367f, 0.0f, 0.2f, "feed rate"},
+                {"k", 0.0649f, 0.0f, 0.2f, "kill rate"},
+                {"Du", 0.2097f, 0.0f, 10.0f, "diffusion rate of u (cell^2 per unit time)"},
+                {"Dv", 0.105f, 0.0f, 10.0f, "diffusion rate of v (cell^2 per unit time)"}};
+    m_displayChemical = 1;
+    m_defaultDt = 1.0f;
+    m_defaultInit.type = InitialCondition::Type::SeedSpots;
+    m_defaultInit.base = {{"u", 1.0f}, {"v", 0.0f}};
+    m_defaultInit.inside = {{"u", 0.5f}, {"v", 0.25f}};
+    m_defaultInit.noise = {{"u", 0.01f}, {"v", 0.01f}};
+    m_defaultInit.spotCount = 20;
+    m_defaultInit.spotRadius = 4.0f;
+}
+
+void GrayScottModel::react(const RowView& row, const float* p) const {
+    const float F = p[0], k = p[1];
+    const float* u = row.c[0];
+    const float* v = row.c[1];
+    float* du = row.dcdt[0];
+    float* dv = row.dcdt[1];
+#pragma omp simd
+    for (int i = 0; i < row.n; ++i) {
+        const float uvv = u[i] * v[i] * v[i];
+        du[i] = -uvv + F * (1.0f - u[i]);
+        dv[i] = uvv - (F + k) * v[i];
+    }
+}
+
+} // namespace morphogen

@@ -1,0 +1,51 @@
+#include "core/models/turing_turk.hpp"
+
+#include "core/random.hpp"
+
+namespace morphogen {
+
+TuringTurkModel::TuringTurkModel() {
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    m_name = "turing_turk";
+    m_description = "Turing spots as Turk 1991 writes them (s sets the spot size)";
+    m_chemicals = {{"a", "Da", -inf, inf, -1.0f, 1e3f},
+                   {"b", "Db", 0.0f, inf, -1.0f, 1e3f},
+                   {"beta", "", -inf, inf, -1e3f, 1e3f}};
+    m_params = {{"s", 0.05f, 0.0f, 10.0f, "reaction rate: smaller s, larger spots"},
+                {"Da", 0.125f, 0.0f, 10.0f, "diffusion rate of a (the inhibitor)"},
+                {"Db", 0.03125f, 0.0f, 10.0f, "diffusion rate of b"},
+                {"beta_mean", 12.0f, 0.0f, 100.0f, "mean of the per-cell beta field"},
+                {"beta_noise", 0.1f, 0.0f, 100.0f, "beta = beta_mean + U(-noise, noise)"}};
+    m_displayChemical = 1;
+    m_defaultDt = 1.0f;
+    m_defaultInit.base = {{"a", 4.0f}, {"b", 4.0f}};
+}
+
+void TuringTurkModel::react(const RowView& row, const float* p) const {
+    const float s = p[0];
+    const float* a = row.c[0];
+    const float* b = row.c[1];
+    const float* beta = row.c[2];
+    float* da = row.dcdt[0];
+    float* db = row.dcdt[1];
+    float* dbeta = row.dcdt[2];
+#pragma omp simd
+    for (int i = 0; i < row.n; ++i) {
+        const float ab = a[i] * b[i];
+        da[i] = s * (16.0f - ab);
+        db[i] = s * (ab - b[i] - beta[i]);
+        dbeta[i] = 0.0f;
+    }
+}
+
+void TuringTurkModel::prepareState(State& state, const ParamValues& values,
+                                   std::uint64_t seed) const {
+    const float mean = values.at("beta_mean");
+    const float noise = values.at("beta_noise");
+    float* beta = state.plane(2);
+    // Stream 1000 keeps beta's noise independent of the chemicals' noise streams.
+    for (std::size_t i = 0; i < state.cellCount(); ++i)
+        beta[i] = float(mean + noise * uniformSigned(seed, 1000, i));
+}
+
+} // namespace morphogen

@@ -1,0 +1,51 @@
+#include "core/reaction_model.hpp"
+
+#include <cassert>
+
+#include "core/models/gray_scott.hpp"
+#include "core/models/turing_mcgraw.hpp"
+#include "core/models/turing_turk.hpp"
+
+namespace morphogen {
+
+int ReactionModel::chemicalIndex(const std::string& name) const {
+    for (std::size_t i = 0; i < m_chemicals.size(); ++i)
+        if (m_chemicals[i].name == name)
+            return int(i);
+    return -1;
+}
+
+const ParamSpec* ReactionModel::param(const std::string& name) const {
+    for (const ParamSpec& p : m_params)
+        if (p.name == name)
+            return &p;
+    return nullptr;
+}
+
+std::vector<float> ReactionModel::packParams(const ParamValues& values) const {
+    std::vector<float> packed;
+    packed.reserve(m_params.size());
+    for (const ParamSpec& p : m_params) {
+        auto it = values.find(p.name);
+        packed.push_back(it == values.end() ? p.defaultValue : it->second);
+    }
+    return packed;
+}
+
+void ReactionModel::prepareState(State&, const ParamValues&, std::uint64_t) const {}
+
+std::vector<const ReactionModel*> allModels() {
+    static const GrayScottModel grayScott;
+    static const TuringTurkModel turingTurk;
+    static const TuringMcGrawModel turingMcGraw;
+    return {&grayScott, &turingTurk, &turingMcGraw};
+}
+
+const ReactionModel* findModel(const std::string& name) {
+    for (const ReactionModel* m : allModels())
+        if (m->name() == name)
+            return m;
+    return nullptr;
+}
+
+} // namespace morphogen

@@ -1,0 +1,93 @@
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/initial_condition.hpp"
+#include "core/state.hpp"
+
+namespace morphogen {
+
+struct ParamSpec {
+    std::string name;
+    float defaultValue = 0.0f;
+    float min = 0.0f; // accepted range; values outside are rejected as bad input
+    float max = 0.0f;
+    std::string description;
+};
+
+struct ChemicalSpec {
+    std::string name;
+    // The parameter holding this chemical's diffusion rate; empty for a
+    // per-cell field that neither diffuses nor reacts (Turk's beta).
+    std::string diffusionParam;
+    // Hard limits applied after every step on both backends (Turk keeps b >= 0).
+    float clampMin = -std::numeric_limits<float>::infinity();
+    float clampMax = std::numeric_limits<float>::infinity();
+    // Values outside this range mean the run has blown up.
+    float saneMin = -1e4f;
+    float saneMax = 1e4f;
+};
+
+// Parameter values by name, complete for a model (defaults filled in).
+using ParamValues = std::map<std::string, float>;
+
+// Pointers to one row of every chemical plane, for the CPU reaction loops.
+struct RowView {
+    const float* c[4] = {};
+    float* dcdt[4] = {};
+    int n = 0;
+};
+
+// A reaction model: its chemicals, its parameters and its reaction function,
+// written twice from one description: a GLSL snippet (glsl/models/NAME.glsl,
+// defining `vec4 react(vec4 c)` over uniforms p_<param>) and the C++ row loop
+// below. A gltest proves the two agree.
+class ReactionModel {
+public:
+    virtual ~ReactionModel() = default;
+
+    const std::string& name() const { return m_name; }
+    const std::string& description() const { return m_description; }
+    const std::vector<ChemicalSpec>& chemicals() const { return m_chemicals; }
+    const std::vector<ParamSpec>& params() const { return m_params; }
+    // The chemical shown by default when rendering.
+    int displayChemical() const { return m_displayChemical; }
+    // The explicit time step the model's presets are tuned for.
+    float defaultDt() const { return m_defaultDt; }
+    // The start used when a session names none.
+    const InitialCondition& defaultInit() const { return m_defaultInit; }
+    std::string glslPath() const { return "glsl/models/" + m_name + ".glsl"; }
+
+    int chemicalIndex(const std::string& name) const; // -1 when absent
+    const ParamSpec* param(const std::string& name) const;
+
+    // Parameter values in declaration order, the layout react() reads.
+    std::vector<float> packParams(const ParamValues& values) const;
+
+    // dc/dt of the reaction term for one row of cells.
+    virtual void react(const RowView& row, const float* params) const = 0;
+
+    // Fills model-owned per-cell fields after the initial condition (Turk's
+    // beta = mean +- noise). The default does nothing.
+    virtual void prepareState(State& state, const ParamValues& values, std::uint64_t seed) const;
+
+protected:
+    std::string m_name;
+    std::string m_description;
+    std::vector<ChemicalSpec> m_chemicals;
+    std::vector<ParamSpec> m_params;
+    int m_displayChemical = 0;
+    float m_defaultDt = 1.0f;
+    InitialCondition m_defaultInit;
+};
+
+// All built-in models, by name.
+const ReactionModel* findModel(const std::string& name);
+std::vector<const ReactionModel*> allModels();
+
+} // namespace morphogen

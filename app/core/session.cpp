@@ -1,0 +1,422 @@
+#include "core/session.hpp"
+
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/embedded_files.hpp"
+#include "core/errors.hpp"
+
+namespace morphogen {
+
+using nlohmann::json;
+
+std::string toString(EdgeMode mode) { return mode == EdgeMode::Periodic ? "periodic" : "clamped"; }
+
+std::string toString(Stencil stencil) {
+    return stencil == Stencil::FivePoint ? "5-point" : "9-point";
+}
+
+const ReactionModel& Session::reactionModel() const {
+    const ReactionModel* m = findModel(model);
+    assert(m && "sessionFromJson rejects unknown models");
+    return *m;
+}
+
+namespace {
+
+std::string typeName(const json& j) { return j.type_name(); }
+
+// Reads fields of one JSON object and reports problems as "source: field 'a.b' ...".
+class FieldReader {
+public:
+    FieldReader(const json& object, std::string source, std::string prefix)
+        : m_object(object), m_source(std::move(source)), m_prefix(std::move(prefix)) {
+        if (!m_object.is_object())
+            fail(m_prefix.empty() ? "the top level" : "field '" + m_prefix + "'",
+                 "must be a JSON object, got " + typeName(m_object));
+    }
+
+    [[noreturn]] void fail(const std::string& what, const std::string& problem) const {
+        throw InputError(m_source + ": " + what + " " + problem);
+    }
+    std::string path(const std::string& key) const {
+        return m_prefix.empty() ? key : m_prefix + "." + key;
+    }
+    [[noreturn]] void failField(const std::string& key, const std::string& problem) const {
+        fail("field '" + path(key) + "'", problem);
+    }
+
+    const json* find(const std::string& key) const {
+        auto it = m_object.find(key);
+        return it == m_object.end() ? nullptr : &*it;
+    }
+
+    void rejectUnknown(std::initializer_list<const char*> known) const {
+        for (auto it = m_object.begin(); it != m_object.end(); ++it) {
+            bool ok = false;
+            std::string list;
+            for (const char* k : known) {
+                ok = ok || it.key() == k;
+                list += (list.empty() ? "" : ", ") + std::string(k);
+            }
+            if (!ok)
+                fail("unknown field '" + path(it.key()) + "'", "(accepted: " + list + ")");
+        }
+    }
+
+    std::string string(const std::string& key, const std::string& fallback) const {
+        const json* j = find(key);
+        if (!j)
+            return fallback;
+        if (!j->is_string())
+            failField(key, "must be a string, got " + typeName(*j));
+        return j->get<std::string>();
+    }
+
+    double number(const std::string& key, double fallback, double min, double max) const {
+        const json* j = find(key);
+        if (!j)
+            return fallback;
+        return numberValue(*j, key, min, max);
+    }
+
+    double numberValue(const json& j, const std::string& key, double min, double max) const {
+        if (!j.is_number())
+            failField(key, "must be a number, got " + typeName(j));
+        const double v = j.get<double>();
+        if (!std::isfinite(v) || v < min || v > max) {
+            std::ostringstream os;
+            os << "is " << v << ", accepted range is [" << min << ", " << max << "]";
+            failField(key, os.str());
+        }
+        return v;
+    }
+
+    long long integer(const std::string& key, long long fallback, long long min,
+                      long long max) const {
+        const json* j = find(key);
+        if (!j)
+            return fallback;
+        if (!j->is_number_integer())
+            failField(key, "must be an integer, got " + typeName(*j));
+        const long long v = j->is_number_unsigned() ? (long long)j->get<unsigned long long>()
+                                                    : j->get<long long>();
+        if (v < min || v > max)
+            failField(key, "is " + std::to_string(v) + ", accepted range is [" +
+                               std::to_string(min) + ", " + std::to_string(max) + "]");
+        return v;
+    }
+
+    const std::string& source() const { return m_source; }
+
+private:
+    const json& m_object;
+    std::string m_source;
+    std::string m_prefix;
+};
+
+std::map<std::string, float> chemicalValues(const FieldReader& parent, const std::string& key,
+                                            const ReactionModel& model) {
+    std::map<std::string, float> values;
+    const json* j = parent.find(key);
+    if (!j)
+        return values;
+    FieldReader reader(*j, parent.source(), parent.path(key));
+    for (auto it = j->begin(); it != j->end(); ++it) {
+        if (model.chemicalIndex(it.key()) < 0) {
+            std::string names;
+            for (const ChemicalSpec& c : model.chemicals())
+                names += (names.empty() ? "" : ", ") + c.name;
+            reader.fail("field '" + reader.path(it.key()) + "'",
+                        "is not a chemical of model '" + model.name() + "' (chemicals: " + names +
+                            ")");
+        }
+        values[it.key()] = float(reader.numberValue(*it, it.key(), -1e6, 1e6));
+    }
+    return values;
+}
+
+std::array<float, 3> colour(const FieldReader& reader, const std::string& key,
+                            std::array<float, 3> fallback) {
+    const json* j = reader.find(key);
+    if (!j)
+        return fallback;
+    if (!j->is_array() || j->size() != 3)
+        reader.failField(key, "must be an array of 3 numbers in [0, 1] (sRGB)");
+    std::array<float, 3> rgb{};
+    for (std::size_t i = 0; i < 3; ++i)
+        rgb[i] = float(reader.numberValue((*j)[i], key + "[" + std::to_string(i) + "]", 0, 1));
+    return rgb;
+}
+
+std::string paramNames(const ReactionModel& model) {
+    std::string names;
+    for (const ParamSpec& p : model.params())
+        names += (names.empty() ? "" : ", ") + p.name;
+    return names;
+}
+
+} // namespace
+
+Session sessionFromJson(const json& root, const std::string& source) {
+    FieldReader top(root, source, "");
+    top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "stencil",
+                       "integrator", "dt", "steps", "seed", "init", "colormap"});
+    Session s;
+    s.name = top.string("name", "");
+    s.description = top.string("description", "");
+    s.model = top.string("model", s.model);
+    const ReactionModel* model = findModel(s.model);
+    if (!model) {
+        std::string names;
+        for (const ReactionModel* m : allModels())
+            names += (names.empty() ? "" : ", ") + m->name();
+        top.failField("model", "is '" + s.model + "', not a known model (known: " + names + ")");
+    }
+
+    for (const ParamSpec& p : model->params())
+        s.params[p.name] = p.defaultValue;
+    if (const json* params = top.find("params")) {
+        FieldReader reader(*params, source, "params");
+        for (auto it = params->begin(); it != params->end(); ++it) {
+            const ParamSpec* spec = model->param(it.key());
+            if (!spec)
+                reader.fail("field 'params." + it.key() + "'",
+                            "is not a parameter of model '" + model->name() +
+                                "' (parameters: " + paramNames(*model) + ")");
+            s.params[it.key()] = float(reader.numberValue(*it, it.key(), spec->min, spec->max));
+        }
+    }
+
+    if (const json* size = top.find("size")) {
+        if (size->is_number_integer()) {
+            s.width = s.height = int(top.integer("size", 0, 1, kMaxGridSide));
+        } else if (size->is_array() && size->size() == 2) {
+            FieldReader dummy(json::object(), source, "");
+            s.width = int(dummy.numberValue((*size)[0], "size[0]", 1, kMaxGridSide));
+            s.height = int(dummy.numberValue((*size)[1], "size[1]", 1, kMaxGridSide));
+            if (!(*size)[0].is_number_integer() || !(*size)[1].is_number_integer())
+                top.failField("size", "must hold integers");
+        } else {
+            top.failField("size", "must be an integer N or an array [W, H], got " +
+                                      size->dump());
+        }
+    }
+
+    const std::string edges = top.string("edges", "periodic");
+    if (edges == "periodic")
+        s.edges = EdgeMode::Periodic;
+    else if (edges == "clamped")
+        s.edges = EdgeMode::Clamped;
+    else
+        top.failField("edges", "is '" + edges + "', accepted: periodic, clamped");
+
+    const std::string stencil = top.string("stencil", "5-point");
+    if (stencil == "5-point")
+        s.stencil = Stencil::FivePoint;
+    else if (stencil == "9-point")
+        s.stencil = Stencil::NinePoint;
+    else
+        top.failField("stencil", "is '" + stencil + "', accepted: 5-point, 9-point");
+
+    const std::string integrator = top.string("integrator", "explicit_euler");
+    if (integrator != "explicit_euler")
+        top.failField("integrator", "is '" + integrator + "', accepted: explicit_euler");
+
+    s.dt = float(top.number("dt", model->defaultDt(), 1e-6, 100.0));
+    s.steps = int(top.integer("steps", s.steps, 0, 100000000));
+    s.seed = std::uint64_t(top.integer("seed", 1, 0, (1LL << 53)));
+
+    s.init = model->defaultInit();
+    if (const json* init = top.find("init")) {
+        FieldReader reader(*init, source, "init");
+        reader.rejectUnknown({"type", "base", "noise", "inside", "fraction", "count", "radius"});
+        const std::string type = reader.string("type", toString(s.init.type));
+        if (type == "noise")
+            s.init.type = InitialCondition::Type::Noise;
+        else if (type == "centre_square")
+            s.init.type = InitialCondition::Type::CentreSquare;
+        else if (type == "seed_spots")
+            s.init.type = InitialCondition::Type::SeedSpots;
+        else
+            reader.failField("type", "is '" + type + "', accepted: noise, centre_square, seed_spots");
+        if (reader.find("base"))
+            s.init.base = chemicalValues(reader, "base", *model);
+        if (reader.find("noise"))
+            s.init.noise = chemicalValues(reader, "noise", *model);
+        if (reader.find("inside"))
+            s.init.inside = chemicalValues(reader, "inside", *model);
+        s.init.squareFraction = float(reader.number("fraction", s.init.squareFraction, 0.0, 1.0));
+        s.init.spotCount = int(reader.integer("count", s.init.spotCount, 0, 100000));
+        s.init.spotRadius = float(reader.number("radius", s.init.spotRadius, 0.0, 10000.0));
+    }
+
+    if (const json* cm = top.find("colormap")) {
+        FieldReader reader(*cm, source, "colormap");
+        reader.rejectUnknown({"name", "chemical", "low", "high"});
+        s.colormap.name = reader.string("name", s.colormap.name);
+        s.colormap.chemical = reader.string("chemical", "");
+        if (!s.colormap.chemical.empty() && model->chemicalIndex(s.colormap.chemical) < 0)
+            reader.failField("chemical", "is '" + s.colormap.chemical +
+                                             "', not a chemical of model '" + model->name() + "'");
+        s.colormap.low = colour(reader, "low", s.colormap.low);
+        s.colormap.high = colour(reader, "high", s.colormap.high);
+    }
+    return s;
+}
+
+json sessionToJson(const Session& s) {
+    json j;
+    if (!s.name.empty())
+        j["name"] = s.name;
+    if (!s.description.empty())
+        j["description"] = s.description;
+    j["model"] = s.model;
+    j["params"] = s.params;
+    j["size"] = json::array({s.width, s.height});
+    j["edges"] = toString(s.edges);
+    j["stencil"] = toString(s.stencil);
+    j["integrator"] = "explicit_euler";
+    j["dt"] = s.dt;
+    j["steps"] = s.steps;
+    j["seed"] = s.seed;
+    json init;
+    init["type"] = toString(s.init.type);
+    init["base"] = s.init.base;
+    init["noise"] = s.init.noise;
+    if (s.init.type != InitialCondition::Type::Noise)
+        init["inside"] = s.init.inside;
+    if (s.init.type == InitialCondition::Type::CentreSquare)
+        init["fraction"] = s.init.squareFraction;
+    if (s.init.type == InitialCondition::Type::SeedSpots) {
+        init["count"] = s.init.spotCount;
+        init["radius"] = s.init.spotRadius;
+    }
+    j["init"] = init;
+    json cm;
+    cm["name"] = s.colormap.name;
+    if (!s.colormap.chemical.empty())
+        cm["chemical"] = s.colormap.chemical;
+    cm["low"] = s.colormap.low;
+    cm["high"] = s.colormap.high;
+    j["colormap"] = cm;
+    return j;
+}
+
+Session loadSessionFile(const std::string& path) {
+    std::ifstream in(path);
+    if (!in)
+        throw InputError(path + ": cannot open session file (does it exist and is it readable?)");
+    json j;
+    try {
+        j = json::parse(in);
+    } catch (const json::parse_error& e) {
+        throw InputError(path + ": not valid JSON: " + e.what());
+    }
+    Session s = sessionFromJson(j, path);
+    validateSession(s, path);
+    return s;
+}
+
+void saveSessionFile(const Session& session, const std::string& path) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream out(tmp);
+        if (!out)
+            throw InputError(path + ": cannot write the session file (is the folder writable?)");
+        out << sessionToJson(session).dump(2) << "\n";
+        if (!out)
+            throw InputError(path + ": writing the session file failed");
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec)
+        throw InputError(path + ": cannot move the session file into place: " + ec.message());
+}
+
+std::vector<Session> allPresets() {
+    std::vector<Session> presets;
+    for (std::string_view path : embeddedFiles("models/presets/")) {
+        const std::string source(path);
+        json j;
+        try {
+            j = json::parse(*embeddedFile(path));
+        } catch (const json::parse_error& e) {
+            throw InputError(source + ": not valid JSON: " + e.what());
+        }
+        Session s = sessionFromJson(j, source);
+        if (s.name.empty())
+            s.name = std::filesystem::path(source).stem().string();
+        presets.push_back(std::move(s));
+    }
+    return presets;
+}
+
+Session loadPreset(const std::string& name) {
+    std::string names;
+    for (Session& s : allPresets()) {
+        if (s.name == name)
+            return s;
+        names += (names.empty() ? "" : ", ") + s.name;
+    }
+    throw InputError("unknown preset '" + name + "' (known: " + names +
+                     "; `morphogen presets` lists them)");
+}
+
+void applyParamOverride(Session& session, const std::string& assignment) {
+    const auto eq = assignment.find('=');
+    const ReactionModel& model = session.reactionModel();
+    if (eq == std::string::npos || eq == 0)
+        throw InputError("--param '" + assignment + "': expected name=value (parameters of " +
+                         model.name() + ": " + paramNames(model) + ")");
+    const std::string name = assignment.substr(0, eq);
+    const std::string text = assignment.substr(eq + 1);
+    const ParamSpec* spec = model.param(name);
+    if (!spec)
+        throw InputError("--param '" + assignment + "': '" + name + "' is not a parameter of " +
+                         model.name() + " (parameters: " + paramNames(model) + ")");
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(v))
+        throw InputError("--param '" + assignment + "': '" + text + "' is not a number");
+    if (v < spec->min || v > spec->max) {
+        std::ostringstream os;
+        os << "--param '" << assignment << "': " << name << " must be in [" << spec->min << ", "
+           << spec->max << "]";
+        throw InputError(os.str());
+    }
+    session.params[name] = float(v);
+}
+
+void validateSession(const Session& s, const std::string& source) {
+    const ReactionModel* model = findModel(s.model);
+    if (!model)
+        throw InputError(source + ": unknown model '" + s.model + "'");
+    for (const ParamSpec& p : model->params()) {
+        auto it = s.params.find(p.name);
+        if (it == s.params.end())
+            throw InputError(source + ": parameter '" + p.name + "' is missing");
+        if (!std::isfinite(it->second) || it->second < p.min || it->second > p.max) {
+            std::ostringstream os;
+            os << source << ": parameter " << p.name << " = " << it->second
+               << " is outside [" << p.min << ", " << p.max << "]";
+            throw InputError(os.str());
+        }
+    }
+    if (s.width < 1 || s.height < 1 || s.width > kMaxGridSide || s.height > kMaxGridSide)
+        throw InputError(source + ": size " + std::to_string(s.width) + "x" +
+                         std::to_string(s.height) + " is outside 1.." +
+                         std::to_string(kMaxGridSide) + " per side");
+    if (!(s.dt > 0.0f) || !std::isfinite(s.dt))
+        throw InputError(source + ": dt must be a positive number");
+    if (s.steps < 0)
+        throw InputError(source + ": steps must be >= 0");
+}
+
+} // namespace morphogen

@@ -1,0 +1,74 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "core/grid_domain.hpp"
+#include "core/initial_condition.hpp"
+#include "core/reaction_model.hpp"
+
+namespace morphogen {
+
+enum class Stencil {
+    FivePoint, // lap = l + r + u + d - 4c
+    NinePoint, // lap = (4 (l + r + u + d) + corners - 20c) / 6: more isotropic
+};
+std::string toString(Stencil stencil);
+
+struct ColorMapSpec {
+    std::string name = "grey"; // see colormap.hpp for the list
+    std::string chemical;      // empty: the model's display chemical
+    // Ends of the "two-colour" blend, display (sRGB) values in [0, 1].
+    std::array<float, 3> low = {0.05f, 0.05f, 0.1f};
+    std::array<float, 3> high = {1.0f, 0.95f, 0.85f};
+};
+
+// Everything that determines a result: same session, same backend, same seed,
+// the same pixels. Presets are sessions with a name and a description.
+struct Session {
+    std::string name;
+    std::string description;
+    std::string model = "gray_scott";
+    ParamValues params; // complete after normalise()
+    int width = 256;
+    int height = 256;
+    EdgeMode edges = EdgeMode::Periodic;
+    Stencil stencil = Stencil::FivePoint;
+    float dt = 1.0f;
+    int steps = 1000;
+    std::uint64_t seed = 1;
+    InitialCondition init;
+    ColorMapSpec colormap;
+
+    GridDomain domain() const { return {width, height, edges}; }
+    const ReactionModel& reactionModel() const; // asserts a known model
+};
+
+// Largest accepted grid side; the GPU may allow less (checked at allocation).
+constexpr int kMaxGridSide = 16384;
+
+// Parses a session; `source` names the file (or preset) in error messages.
+// Unknown fields, wrong types and out-of-range values throw InputError.
+Session sessionFromJson(const nlohmann::json& json, const std::string& source);
+nlohmann::json sessionToJson(const Session& session);
+
+Session loadSessionFile(const std::string& path);
+// Writes atomically (temporary file, then rename).
+void saveSessionFile(const Session& session, const std::string& path);
+
+// Built-in presets (models/presets/*.json, embedded).
+std::vector<Session> allPresets();
+Session loadPreset(const std::string& name);
+
+// Applies "name=value" to session.params; throws InputError naming the
+// parameter and the accepted names/range.
+void applyParamOverride(Session& session, const std::string& assignment);
+
+// Checks params against the model's ranges and the grid against limits.
+void validateSession(const Session& session, const std::string& source);
+
+} // namespace morphogen

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/session.hpp"
+#include "core/state.hpp"
+
+namespace morphogen {
+
+// What one explicit step needs, derived once from a session; both backends
+// read the same values so they share step semantics:
+//   c' = clamp(c + dt * (react(c) + D * lap(c)), clampMin, clampMax)
+struct StepConstants {
+    int chemicals = 0;
+    float dt = 1.0f;
+    std::array<float, 4> diffusion = {};
+    std::array<float, 4> clampMin = {};
+    std::array<float, 4> clampMax = {};
+    std::vector<float> params; // model declaration order
+    Stencil stencil = Stencil::FivePoint;
+    GridDomain domain;
+
+    static StepConstants fromSession(const Session& session);
+};
+
+// One simulation backend. Runs steps without reading back; state() reads back.
+class Simulator {
+public:
+    virtual ~Simulator() = default;
+    virtual std::string backendName() const = 0;
+    virtual void setState(const State& state) = 0;
+    virtual State state() const = 0;
+    virtual void run(int steps) = 0;
+};
+
+} // namespace morphogen

@@ -1,0 +1,64 @@
+#pragma once
+
+#include <array>
+
+#include "core/simulator.hpp"
+#include "gl/objects.hpp"
+
+namespace morphogen::gl {
+
+// Two same-size RGBA32F textures with framebuffers; each pass draws the
+// current texture through a program into the other, then swaps.
+class PingPong {
+public:
+    PingPong() = default;
+    PingPong(int width, int height, GLenum wrap);
+    void run(const Program& program, int passes);
+    Texture2D& current() { return m_textures[std::size_t(m_current)]; }
+    const Texture2D& current() const { return m_textures[std::size_t(m_current)]; }
+
+private:
+    VertexArray m_vao;
+    std::array<Texture2D, 2> m_textures;
+    std::array<Framebuffer, 2> m_framebuffers;
+    int m_current = 0;
+};
+
+// The product backend: FBO ping-pong over two RGBA32F state textures. The
+// step program is assembled from glsl/fullscreen.vert, the model's reaction
+// snippet (glsl/models/NAME.glsl) and glsl/step.frag, with the stencil as a
+// #define variant; parameters are uniforms and edges are the sampler's wrap
+// mode. run() issues draws only: nothing is read back until state().
+// Needs a current context for its whole life.
+class GpuSimulator : public Simulator {
+public:
+    explicit GpuSimulator(const Session& session);
+
+    std::string backendName() const override { return "gpu"; }
+    void setState(const State& state) override;
+    State state() const override;
+    void run(int steps) override;
+
+private:
+    StepConstants m_k;
+    Program m_program;
+    PingPong m_pingPong;
+};
+
+// The shader pieces of a model's step program (also used by the agreement
+// test of the GLSL and C++ reactions).
+std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model);
+
+// The copy pass the benchmark measures the step against: same format, same
+// size, one fetch per texel, same ping-pong.
+class CopyPass {
+public:
+    CopyPass(int width, int height);
+    void run(int steps) { m_pingPong.run(m_program, steps); }
+
+private:
+    Program m_program;
+    PingPong m_pingPong;
+};
+
+} // namespace morphogen::gl

@@ -1,0 +1,185 @@
+#include "gl/objects.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <stdexcept>
+
+#include "core/embedded_files.hpp"
+#include "core/errors.hpp"
+
+namespace morphogen::gl {
+
+Texture2D::Texture2D(int width, int height, GLenum internalFormat)
+    : m_width(width), m_height(height), m_internalFormat(internalFormat) {
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    if (width > maxSize || height > maxSize)
+        throw InputError("size " + std::to_string(width) + "x" + std::to_string(height) +
+                         " exceeds this GPU's largest texture (" + std::to_string(maxSize) +
+                         " per side)");
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    GLuint id = 0;
+    glGenTextures(1, &id);
+    m_name = UniqueName<TextureTraits>(id);
+    glBindTexture(GL_TEXTURE_2D, id);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glTexImage2D(GL_TEXTURE_2D, 0, GLint(internalFormat), width, height, 0, GL_RGBA, GL_FLOAT,
+                 nullptr);
+    const GLenum error = glGetError();
+    if (error == GL_OUT_OF_MEMORY)
+        throw InputError("size " + std::to_string(width) + "x" + std::to_string(height) +
+                         ": the GPU cannot allocate the state textures (out of memory)");
+    if (error != GL_NO_ERROR)
+        throw std::runtime_error("glTexImage2D failed with GL error " + std::to_string(error));
+}
+
+void Texture2D::setWrap(GLenum wrap) {
+    glBindTexture(GL_TEXTURE_2D, id());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GLint(wrap));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GLint(wrap));
+}
+
+void Texture2D::bind(int unit) const {
+    glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+    glBindTexture(GL_TEXTURE_2D, id());
+}
+
+void Texture2D::uploadRgba(const std::vector<float>& rgba) {
+    glBindTexture(GL_TEXTURE_2D, id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_width, m_height, GL_RGBA, GL_FLOAT, rgba.data());
+}
+
+std::vector<float> Texture2D::downloadRgba() const {
+    std::vector<float> rgba(std::size_t(m_width) * m_height * 4);
+    glBindTexture(GL_TEXTURE_2D, id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, rgba.data());
+    return rgba;
+}
+
+Framebuffer::Framebuffer(const Texture2D& colour)
+    : m_width(colour.width()), m_height(colour.height()) {
+    GLuint id = 0;
+    glGenFramebuffers(1, &id);
+    m_name = UniqueName<FramebufferTraits>(id);
+    glBindFramebuffer(GL_FRAMEBUFFER, id);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour.id(), 0);
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("framebuffer with a " + std::to_string(colour.width()) + "x" +
+                                 std::to_string(colour.height()) +
+                                 " texture is incomplete (status 0x" + [&] {
+                                     char buf[16];
+                                     std::snprintf(buf, sizeof buf, "%x", status);
+                                     return std::string(buf);
+                                 }() + ")");
+}
+
+void Framebuffer::bind() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, id());
+    glViewport(0, 0, m_width, m_height);
+}
+
+Buffer::Buffer() {
+    GLuint id = 0;
+    glGenBuffers(1, &id);
+    m_name = UniqueName<BufferTraits>(id);
+}
+
+VertexArray::VertexArray() {
+    GLuint id = 0;
+    glGenVertexArrays(1, &id);
+    m_name = UniqueName<VertexArrayTraits>(id);
+}
+
+namespace {
+
+std::string legend(const std::vector<ShaderPiece>& pieces) {
+    std::string text;
+    for (std::size_t i = 0; i < pieces.size(); ++i)
+        text += "  source " + std::to_string(i) + " = " + pieces[i].name + "\n";
+    return text;
+}
+
+GLuint compileStage(GLenum stage, const std::vector<ShaderPiece>& pieces,
+                    const std::vector<std::string>& defines) {
+    std::vector<ShaderPiece> all;
+    std::string prelude = "#version 330 core\n";
+    for (const std::string& d : defines)
+        prelude += "#define " + d + "\n";
+    all.push_back({"<version and defines>", prelude});
+    all.insert(all.end(), pieces.begin(), pieces.end());
+    std::vector<const char*> strings;
+    for (const ShaderPiece& p : all)
+        strings.push_back(p.text.c_str());
+
+    const GLuint shader = glCreateShader(stage);
+    glShaderSource(shader, GLsizei(strings.size()), strings.data(), nullptr);
+    glCompileShader(shader);
+    GLint ok = 0, logLength = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &logLength);
+    std::string log(std::size_t(std::max(logLength, 1)), '\0');
+    glGetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
+    log.resize(std::strlen(log.c_str()));
+    const std::string mainFile = pieces.empty() ? "?" : pieces.back().name;
+    if (!ok) {
+        glDeleteShader(shader);
+        throw std::runtime_error("compiling " + mainFile + " failed:\n" + log +
+                                 "(log prefixes N:line refer to\n" + legend(all) + ")");
+    }
+    if (!log.empty())
+        std::cerr << "shader log for " << mainFile << ":\n" << log << legend(all);
+    return shader;
+}
+
+} // namespace
+
+Program::Program(const std::vector<ShaderPiece>& vertex, const std::vector<ShaderPiece>& fragment,
+                 const std::vector<std::string>& defines) {
+    const GLuint vs = compileStage(GL_VERTEX_SHADER, vertex, defines);
+    GLuint fs = 0;
+    try {
+        fs = compileStage(GL_FRAGMENT_SHADER, fragment, defines);
+    } catch (...) {
+        glDeleteShader(vs);
+        throw;
+    }
+    const GLuint program = glCreateProgram();
+    m_name = UniqueName<ProgramTraits>(program);
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+    glDetachShader(program, vs);
+    glDetachShader(program, fs);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0, logLength = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &logLength);
+    std::string log(std::size_t(std::max(logLength, 1)), '\0');
+    glGetProgramInfoLog(program, GLsizei(log.size()), nullptr, log.data());
+    log.resize(std::strlen(log.c_str()));
+    const std::string names = vertex.back().name + " + " + fragment.back().name;
+    if (!ok)
+        throw std::runtime_error("linking " + names + " failed:\n" + log);
+    if (!log.empty())
+        std::cerr << "link log for " << names << ":\n" << log;
+}
+
+ShaderPiece embeddedShader(const std::string& path) {
+    auto text = embeddedFile(path);
+    if (!text)
+        throw std::runtime_error("shader " + path + " is not embedded in this build");
+    return {path, std::string(*text)};
+}
+
+} // namespace morphogen::gl

@@ -1,0 +1,35 @@
+#include "test_support.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/cpu_simulator.hpp"
+
+namespace morphogen::test {
+
+Session smallSession(const std::string& preset, int size, int steps) {
+    Session s = loadPreset(preset);
+    s.width = s.height = size;
+    s.steps = steps;
+    return s;
+}
+
+float maxAbsDifference(const State& a, const State& b) {
+    float worst = 0.0f;
+    for (int c = 0; c < a.channels(); ++c)
+        for (std::size_t i = 0; i < a.cellCount(); ++i) {
+            const float d = std::fabs(a.plane(c)[i] - b.plane(c)[i]);
+            worst = std::isnan(d) ? INFINITY : std::max(worst, d);
+        }
+    return worst;
+}
+
+State runCpu(const Session& session) {
+    CpuSimulator sim(session);
+    sim.setState(makeInitialState(session.init, session.reactionModel(), session.params,
+                                  session.width, session.height, session.seed));
+    sim.run(session.steps);
+    return sim.state();
+}
+
+} // namespace morphogen::test

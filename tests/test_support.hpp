@@ -1,0 +1,19 @@
+#pragma once
+
+#include <string>
+
+#include "core/session.hpp"
+#include "core/state.hpp"
+
+namespace morphogen::test {
+
+// A preset shrunk for tests: size x size cells, `steps` steps.
+Session smallSession(const std::string& preset, int size, int steps);
+
+// Largest absolute difference over all chemicals.
+float maxAbsDifference(const State& a, const State& b);
+
+// Runs a session on the CPU backend from its initial condition.
+State runCpu(const Session& session);
+
+} // namespace morphogen::test
