@@ -89,9 +89,11 @@ std::vector<float> applyColormap(const State& state, int chemical, const ColorMa
             lo = std::min(lo, p[i]);
             hi = std::max(hi, p[i]);
         }
-    // A flat field maps to the low end rather than dividing by zero.
+    // A flat field maps to the low end: stretching float round-off (a range
+    // of a few ulps) to the full palette would invent a pattern.
     const float range = hi - lo;
-    const float scale = range > 1e-12f ? 1.0f / range : 0.0f;
+    const float magnitude = std::max({1.0f, std::fabs(lo), std::fabs(hi)});
+    const float scale = range > 1e-5f * magnitude ? 1.0f / range : 0.0f;
 
     std::vector<float> rgb(n * 3);
     for (std::size_t i = 0; i < n; ++i) {

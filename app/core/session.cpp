@@ -233,8 +233,11 @@ Session sessionFromJson(const json& root, const std::string& source) {
     s.steps = int(top.integer("steps", s.steps, 0, 100000000));
     s.seed = std::uint64_t(top.integer("seed", 1, 0, (1LL << 53)));
 
+    // A session's "init" replaces the model's default start whole: fields it
+    // leaves out are empty, not inherited.
     s.init = model->defaultInit();
     if (const json* init = top.find("init")) {
+        s.init = InitialCondition{};
         FieldReader reader(*init, source, "init");
         reader.rejectUnknown({"type", "base", "noise", "inside", "fraction", "count", "radius"});
         const std::string type = reader.string("type", toString(s.init.type));

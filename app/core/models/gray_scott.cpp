@@ -14,7 +14,10 @@ GrayScottModel::GrayScottModel() {
                 {"Du", 0.2097f, 0.0f, 10.0f, "diffusion rate of u (cell^2 per unit time)"},
                 {"Dv", 0.105f, 0.0f, 10.0f, "diffusion rate of v (cell^2 per unit time)"}};
     m_displayChemical = 1;
-    m_defaultDt = 1.0f;
+    // Pearson's dt = 1 sits on the stability edge in high-v states
+    // (8 Du + v^2 + F ~ 2.05 at F 0.06, k 0.03): it leaves a period-2
+    // checkerboard there. 0.9 keeps every preset stable.
+    m_defaultDt = 0.9f;
     m_defaultInit.type = InitialCondition::Type::SeedSpots;
     m_defaultInit.base = {{"u", 1.0f}, {"v", 0.0f}};
     m_defaultInit.inside = {{"u", 0.5f}, {"v", 0.25f}};

@@ -9,10 +9,10 @@ TuringMcGrawModel::TuringMcGrawModel() {
     m_chemicals = {{"u", "du", 0.0f, inf, -1.0f, 1e3f}, {"v", "dv", 0.0f, inf, -1.0f, 1e3f}};
     m_params = {{"alpha", 12.0f, 0.0f, 100.0f, "decay offset of the activator u"},
                 {"beta", 15.0f, 0.0f, 100.0f, "supply of the substrate v"},
-                {"du", 0.0625f, 0.0f, 10.0f, "diffusion rate of u (the activator)"},
-                {"dv", 1.0f, 0.0f, 10.0f, "diffusion rate of v (the substrate)"}};
+                {"du", 2.0f, 0.0f, 100.0f, "diffusion rate of u (the activator)"},
+                {"dv", 8.0f, 0.0f, 100.0f, "diffusion rate of v (the substrate)"}};
     m_displayChemical = 0;
-    m_defaultDt = 0.1f;
+    m_defaultDt = 0.02f;
     m_defaultInit.base = {{"u", 4.0f}, {"v", 4.0f}};
     m_defaultInit.noise = {{"u", 2.0f}, {"v", 2.0f}};
 }

@@ -8,6 +8,12 @@ namespace morphogen {
 //   du/dt = du lap u + u v - u - alpha
 //   dv/dt = dv lap v + beta - u v
 // alpha = 12, beta = 16 with u = v = 4 is a steady state; beta = 15 patterns.
+//
+// Scaling: McGraw's dt = 0.1 comes with his own grid spacing. On a unit grid a
+// visible wavelength (~8 cells) needs du = 2, dv = 8, and explicit Euler is
+// then stable only for dt <~ 0.025 (u peaks near 30 in the transient), so the
+// default is dt = 0.02. The semi-implicit solver is the way to larger steps.
+// u, v >= 0 is enforced: without it every run tried went to NaN.
 class TuringMcGrawModel : public ReactionModel {
 public:
     TuringMcGrawModel();

@@ -12,12 +12,12 @@ TuringTurkModel::TuringTurkModel() {
                    {"b", "Db", 0.0f, inf, -1.0f, 1e3f},
                    {"beta", "", -inf, inf, -1e3f, 1e3f}};
     m_params = {{"s", 0.05f, 0.0f, 10.0f, "reaction rate: smaller s, larger spots"},
-                {"Da", 0.125f, 0.0f, 10.0f, "diffusion rate of a (the inhibitor)"},
-                {"Db", 0.03125f, 0.0f, 10.0f, "diffusion rate of b"},
+                {"Da", 1.0f, 0.0f, 10.0f, "diffusion rate of a (the inhibitor)"},
+                {"Db", 0.25f, 0.0f, 10.0f, "diffusion rate of b"},
                 {"beta_mean", 12.0f, 0.0f, 100.0f, "mean of the per-cell beta field"},
                 {"beta_noise", 0.1f, 0.0f, 100.0f, "beta = beta_mean + U(-noise, noise)"}};
     m_displayChemical = 1;
-    m_defaultDt = 1.0f;
+    m_defaultDt = 0.18f;
     m_defaultInit.base = {{"a", 4.0f}, {"b", 4.0f}};
 }
 

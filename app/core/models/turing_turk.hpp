@@ -9,6 +9,14 @@ namespace morphogen {
 //   db/dt = s (a b - b - beta) + Db lap b,   b >= 0
 // beta is a per-cell field, beta_mean +- beta_noise, drawn once from the seed:
 // it is stored as a third chemical that neither diffuses nor reacts.
+//
+// Scaling: Turk's literal Da = 0.125, Db = 0.03125 with dt = 1 puts the
+// s = 0.2 pattern at the grid's Nyquist mode (a 2-pixel checkerboard). We keep
+// his 4:1 ratio and scale both rates by 8 (Da = 1, Db = 0.25), with dt = 0.18
+// (stable up to ~0.22): s = 0.05 then gives spots of wavelength ~14 cells and
+// s = 0.2 ~7 cells. The 4:1 ratio sits exactly on the Turing threshold, so the
+// pattern grows from the beta noise and the nonlinearity: large spots need
+// ~5000 steps. b must be clamped at 0 or both sizes blow up.
 class TuringTurkModel : public ReactionModel {
 public:
     TuringTurkModel();

@@ -1,0 +1,76 @@
+#include "core/pattern_stats.hpp"
+
+#include <cmath>
+#include <complex>
+#include <vector>
+
+#include <unsupported/Eigen/FFT>
+
+namespace morphogen {
+
+SpectrumStats spectrumStats(const State& state, int chemical) {
+    const int w = state.width(), h = state.height();
+    const float* p = state.plane(chemical);
+    SpectrumStats stats;
+    double mean = 0;
+    for (std::size_t i = 0; i < state.cellCount(); ++i)
+        mean += p[i];
+    mean /= double(state.cellCount());
+    for (std::size_t i = 0; i < state.cellCount(); ++i)
+        stats.variance += (p[i] - mean) * (p[i] - mean);
+    stats.variance /= double(state.cellCount());
+
+    // 2D FFT as rows then columns.
+    Eigen::FFT<double> fft;
+    std::vector<std::complex<double>> grid(state.cellCount());
+    std::vector<double> rowIn(std::size_t(w), 0.0);
+    std::vector<std::complex<double>> rowOut, colOut;
+    std::vector<std::complex<double>> colIn(static_cast<std::size_t>(h));
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x)
+            rowIn[std::size_t(x)] = p[std::size_t(y) * w + x] - mean;
+        fft.fwd(rowOut, rowIn);
+        for (int x = 0; x < w; ++x)
+            grid[std::size_t(y) * w + x] = rowOut[std::size_t(x)];
+    }
+    for (int x = 0; x < w; ++x) {
+        for (int y = 0; y < h; ++y)
+            colIn[std::size_t(y)] = grid[std::size_t(y) * w + x];
+        fft.fwd(colOut, colIn);
+        for (int y = 0; y < h; ++y)
+            grid[std::size_t(y) * w + x] = colOut[std::size_t(y)];
+    }
+
+    // Radial average in units of cycles per cell, binned at 1/max(w, h).
+    const int n = std::max(w, h);
+    std::vector<double> power(std::size_t(n), 0.0), count(std::size_t(n), 0.0);
+    double total = 0, outer = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const double fx = double(x <= w / 2 ? x : x - w) / w;
+            const double fy = double(y <= h / 2 ? y : y - h) / h;
+            const double f = std::sqrt(fx * fx + fy * fy);
+            if (f == 0)
+                continue;
+            const double e = std::norm(grid[std::size_t(y) * w + x]);
+            total += e;
+            if (f > 0.4)
+                outer += e;
+            const int bin = int(std::lround(f * n));
+            if (bin < n) {
+                power[std::size_t(bin)] += e;
+                count[std::size_t(bin)] += 1;
+            }
+        }
+    int best = 1;
+    for (int b = 1; b < n; ++b)
+        if (count[std::size_t(b)] > 0 &&
+            power[std::size_t(b)] / count[std::size_t(b)] >
+                power[std::size_t(best)] / std::max(1.0, count[std::size_t(best)]))
+            best = b;
+    stats.dominantWavelength = double(n) / best;
+    stats.nyquistFraction = total > 0 ? outer / total : 0.0;
+    return stats;
+}
+
+} // namespace morphogen

@@ -1,0 +1,131 @@
+// Output images through OpenImageIO: written files read back with the values
+// they should hold; bad paths give InputError before anything is written.
+
+#include <filesystem>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "core/colormap.hpp"
+#include "core/errors.hpp"
+#include "core/image_io.hpp"
+
+using namespace morphogen;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path workDir() {
+    const fs::path dir = fs::temp_directory_path() / "morphogen_image_io_test";
+    fs::create_directories(dir);
+    return dir;
+}
+
+State ramp(int w, int h) {
+    State st(w, h, 2);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            st.at(0, x, y) = float(x) / float(w - 1);
+            st.at(1, x, y) = -3.5f + float(y);
+        }
+    return st;
+}
+
+} // namespace
+
+TEST(ImageIo, FormatFollowsTheExtension) {
+    EXPECT_EQ(imageFormatForPath("a/b.png"), ImageFormat::Png);
+    EXPECT_EQ(imageFormatForPath("b.TIFF"), ImageFormat::Tiff);
+    EXPECT_EQ(imageFormatForPath("b.tif"), ImageFormat::Tiff);
+    EXPECT_EQ(imageFormatForPath("b.exr"), ImageFormat::Exr);
+    try {
+        imageFormatForPath("out.jpg");
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(".png, .tif, .tiff, .exr"), std::string::npos);
+    }
+}
+
+TEST(ImageIo, UnwritableDestinationsAreRefusedUpFront) {
+    EXPECT_THROW(checkWritable("/nonexistent-folder/x.png"), InputError);
+    EXPECT_THROW(checkWritable(workDir().string()), InputError); // a folder
+    EXPECT_NO_THROW(checkWritable((workDir() / "ok.png").string()));
+    EXPECT_FALSE(fs::exists(workDir() / "ok.png.probe"));
+}
+
+TEST(ImageIo, PngEightAndSixteenBitHoldTheColourMap) {
+    const State st = ramp(16, 4);
+    ColorMapSpec grey;
+    const auto rgb = applyColormap(st, 0, grey);
+    for (int bits : {8, 16}) {
+        SCOPED_TRACE(bits);
+        const std::string path = (workDir() / ("ramp" + std::to_string(bits) + ".png")).string();
+        writeRgbImage(path, rgb, 16, 4, bits);
+        auto in = OIIO::ImageInput::open(path);
+        ASSERT_TRUE(in);
+        const OIIO::ImageSpec& spec = in->spec();
+        EXPECT_EQ(spec.width, 16);
+        EXPECT_EQ(spec.nchannels, 3);
+        EXPECT_EQ(spec.format, bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16);
+        std::vector<float> px(16 * 4 * 3);
+        ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, px.data()));
+        // de Kleine min-max: the first column is black, the last white.
+        EXPECT_FLOAT_EQ(px[0], 0.0f);
+        EXPECT_FLOAT_EQ(px[15 * 3], 1.0f);
+        // Quantisation tolerance: half a step at the bit depth.
+        EXPECT_NEAR(px[5 * 3], 5.0f / 15.0f, bits == 8 ? 0.5f / 255 : 0.5f / 65535);
+    }
+}
+
+TEST(ImageIo, ExrHoldsRawFloatsWithChemicalNames) {
+    const State st = ramp(8, 8);
+    const std::string path = (workDir() / "raw.exr").string();
+    writeRawImage(path, st, {"u", "v"});
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in);
+    ASSERT_EQ(in->spec().nchannels, 2);
+    EXPECT_EQ(in->spec().channelnames[0], "u");
+    EXPECT_EQ(in->spec().channelnames[1], "v");
+    std::vector<float> px(8 * 8 * 2);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 2, OIIO::TypeDesc::FLOAT, px.data()));
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            EXPECT_EQ(px[std::size_t(y * 8 + x) * 2 + 0], st.at(0, x, y));
+            EXPECT_EQ(px[std::size_t(y * 8 + x) * 2 + 1], st.at(1, x, y));
+        }
+    EXPECT_THROW(writeRawImage((workDir() / "raw.png").string(), st, {"u", "v"}), InputError);
+}
+
+TEST(ImageIo, FailedWriteLeavesNoFile) {
+    const State st = ramp(4, 4);
+    const auto rgb = applyColormap(st, 0, ColorMapSpec{});
+    const std::string path = (workDir() / "no-such-dir" / "x.png").string();
+    EXPECT_THROW(writeRgbImage(path, rgb, 4, 4, 8), InputError);
+    EXPECT_FALSE(fs::exists(path));
+    EXPECT_THROW(writeRgbImage((workDir() / "x.png").string(), rgb, 4, 4, 12), InputError);
+}
+
+TEST(Colormap, NamesAreCheckedAndFlatFieldsStayFlat) {
+    EXPECT_THROW(checkColormapName("rainbow"), InputError);
+    for (const std::string& name : colormapNames())
+        EXPECT_NO_THROW(checkColormapName(name));
+    State flat(4, 4, 1);
+    for (std::size_t i = 0; i < flat.cellCount(); ++i)
+        flat.plane(0)[i] = 0.3f + (i % 2) * 1e-7f; // round-off, not a pattern
+    ColorMapSpec spec;
+    const auto rgb = applyColormap(flat, 0, spec);
+    for (float v : rgb)
+        EXPECT_EQ(v, rgb[0]);
+}
+
+TEST(Colormap, PalettesRunFromDarkToLight) {
+    const State st = ramp(32, 2);
+    for (const char* name : {"viridis", "magma", "inferno"}) {
+        ColorMapSpec spec;
+        spec.name = name;
+        const auto rgb = applyColormap(st, 0, spec);
+        auto luma = [&](int x) { return rgb[x * 3] + rgb[x * 3 + 1] + rgb[x * 3 + 2]; };
+        for (int x = 1; x < 32; ++x)
+            EXPECT_GT(luma(x), luma(x - 1) - 1e-3f) << name << " at " << x;
+    }
+}
