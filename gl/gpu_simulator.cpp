@@ -26,9 +26,11 @@ std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model) {
             embeddedShader("glsl/step.frag")};
 }
 
-PingPong::PingPong(int width, int height, GLenum wrap) {
+GLenum stateFormat(int chemicals) { return chemicals <= 2 ? GL_RG32F : GL_RGBA32F; }
+
+PingPong::PingPong(int width, int height, GLenum internalFormat, GLenum wrap) {
     for (std::size_t i = 0; i < 2; ++i) {
-        m_textures[i] = Texture2D(width, height, GL_RGBA32F);
+        m_textures[i] = Texture2D(width, height, internalFormat);
         m_textures[i].setWrap(wrap);
         m_framebuffers[i] = Framebuffer(m_textures[i]);
     }
@@ -49,7 +51,7 @@ void PingPong::run(const Program& program, int passes) {
 
 GpuSimulator::GpuSimulator(const Session& session)
     : m_k(StepConstants::fromSession(session)),
-      m_pingPong(session.width, session.height,
+      m_pingPong(session.width, session.height, stateFormat(m_k.chemicals),
                  session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE) {
     const ReactionModel& model = session.reactionModel();
     std::vector<std::string> defines;
@@ -79,7 +81,8 @@ State GpuSimulator::state() const {
 
 void GpuSimulator::run(int steps) { m_pingPong.run(m_program, steps); }
 
-CopyPass::CopyPass(int width, int height) : m_pingPong(width, height, GL_REPEAT) {
+CopyPass::CopyPass(int width, int height, GLenum internalFormat)
+    : m_pingPong(width, height, internalFormat, GL_REPEAT) {
     m_program = Program({embeddedShader("glsl/fullscreen.vert")},
                         {embeddedShader("glsl/copy.frag")}, {});
     m_program.use();

@@ -7,12 +7,12 @@
 
 namespace morphogen::gl {
 
-// Two same-size RGBA32F textures with framebuffers; each pass draws the
+// Two same-size float textures with framebuffers; each pass draws the
 // current texture through a program into the other, then swaps.
 class PingPong {
 public:
     PingPong() = default;
-    PingPong(int width, int height, GLenum wrap);
+    PingPong(int width, int height, GLenum internalFormat, GLenum wrap);
     void run(const Program& program, int passes);
     Texture2D& current() { return m_textures[std::size_t(m_current)]; }
     const Texture2D& current() const { return m_textures[std::size_t(m_current)]; }
@@ -24,7 +24,11 @@ private:
     int m_current = 0;
 };
 
-// The product backend: FBO ping-pong over two RGBA32F state textures. The
+// The state texture format for a model: RG32F for up to two chemicals (half
+// the bandwidth), RGBA32F for three or four.
+GLenum stateFormat(int chemicals);
+
+// The product backend: FBO ping-pong over two float state textures. The
 // step program is assembled from glsl/fullscreen.vert, the model's reaction
 // snippet (glsl/models/NAME.glsl) and glsl/step.frag, with the stencil as a
 // #define variant; parameters are uniforms and edges are the sampler's wrap
@@ -53,7 +57,7 @@ std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model);
 // size, one fetch per texel, same ping-pong.
 class CopyPass {
 public:
-    CopyPass(int width, int height);
+    CopyPass(int width, int height, GLenum internalFormat);
     void run(int steps) { m_pingPong.run(m_program, steps); }
 
 private:

@@ -57,7 +57,10 @@ void laplacianRow(const float* up, const float* row, const float* down, float* o
 void CpuSimulator::step() {
     const int w = m_current.width(), h = m_current.height(), nc = m_k.chemicals;
     const EdgeMode edges = m_k.domain.edges();
-#pragma omp parallel
+    // Below ~64k cells a step takes microseconds and the fork/join barrier
+    // would dominate (and spin-waits thrash when processes share the cores).
+    const bool threaded = m_current.cellCount() >= 65536;
+#pragma omp parallel if (threaded)
     {
         std::vector<float> scratch(std::size_t(w) * 2 * 4);
         float* lap[4];
