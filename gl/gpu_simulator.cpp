@@ -54,9 +54,25 @@ GpuSimulator::GpuSimulator(const Session& session)
       m_pingPong(session.width, session.height, stateFormat(m_k.chemicals),
                  session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE) {
     const ReactionModel& model = session.reactionModel();
+    using Form = DiffusionOperator::Form;
+    const DiffusionOperator& op = m_k.op;
     std::vector<std::string> defines;
-    if (m_k.stencil == Stencil::NinePoint)
+    switch (op.form) {
+    case Form::Laplacian5:
+        break;
+    case Form::Laplacian9:
         defines.push_back("STENCIL_9");
+        break;
+    case Form::Kernel3:
+        defines.push_back("KERNEL_3");
+        break;
+    case Form::Kernel5:
+        defines.push_back("KERNEL_5");
+        break;
+    case Form::TensorMap:
+        defines.push_back("TENSOR_MAP");
+        break;
+    }
     m_program = Program({embeddedShader("glsl/fullscreen.vert")}, stepFragmentPieces(model),
                         defines);
 
@@ -65,11 +81,35 @@ GpuSimulator::GpuSimulator(const Session& session)
     glUniform2f(m_program.uniform("uInvSize"), 1.0f / float(session.width),
                 1.0f / float(session.height));
     glUniform1f(m_program.uniform("uDt"), m_k.dt);
-    setVec4(m_program.uniform("uDiffusion"), m_k.diffusion);
+    setVec4(m_program.uniform("uDiffusion"), op.rates);
     setVec4(m_program.uniform("uClampMin"), m_k.clampMin);
     setVec4(m_program.uniform("uClampMax"), m_k.clampMax);
     for (std::size_t i = 0; i < model.params().size(); ++i)
         glUniform1f(m_program.uniform(("p_" + model.params()[i].name).c_str()), m_k.params[i]);
+
+    if (op.form == Form::Kernel3 || op.form == Form::Kernel5) {
+        // One vec4 per tap, one component per chemical.
+        std::vector<float> weights(25 * 4, 0.0f);
+        for (std::size_t tap = 0; tap < 25; ++tap)
+            for (int c = 0; c < op.chemicals; ++c)
+                weights[tap * 4 + std::size_t(c)] = float(op.kernels[std::size_t(c)].w[tap]);
+        glUniform4fv(m_program.uniform("uKernel"), 25, weights.data());
+    }
+    if (op.form == Form::TensorMap) {
+        m_map = Texture2D(session.width, session.height, GL_RGBA32F);
+        m_map.setWrap(session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+        m_map.uploadRgba(op.map.toRgba());
+        glUniform1i(m_program.uniform("uMap"), 1);
+        std::array<float, 4> m{}, dc{}, ds{};
+        for (int c = 0; c < op.chemicals; ++c) {
+            m[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][0];
+            dc[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][1];
+            ds[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][2];
+        }
+        setVec4(m_program.uniform("uMapM"), m);
+        setVec4(m_program.uniform("uMapDc"), dc);
+        setVec4(m_program.uniform("uMapDs"), ds);
+    }
 }
 
 void GpuSimulator::setState(const State& state) { m_pingPong.current().uploadRgba(state.toRgba()); }
@@ -79,7 +119,11 @@ State GpuSimulator::state() const {
                            m_k.domain.height(), m_k.chemicals);
 }
 
-void GpuSimulator::run(int steps) { m_pingPong.run(m_program, steps); }
+void GpuSimulator::run(int steps) {
+    if (m_map.id())
+        m_map.bind(1);
+    m_pingPong.run(m_program, steps);
+}
 
 CopyPass::CopyPass(int width, int height, GLenum internalFormat)
     : m_pingPong(width, height, internalFormat, GL_REPEAT) {

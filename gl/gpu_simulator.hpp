@@ -30,8 +30,8 @@ GLenum stateFormat(int chemicals);
 
 // The product backend: FBO ping-pong over two float state textures. The
 // step program is assembled from glsl/fullscreen.vert, the model's reaction
-// snippet (glsl/models/NAME.glsl) and glsl/step.frag, with the stencil as a
-// #define variant; parameters are uniforms and edges are the sampler's wrap
+// snippet (glsl/models/NAME.glsl) and glsl/step.frag, with the diffusion
+// operator's form as a #define variant; parameters are uniforms and edges are the sampler's wrap
 // mode. run() issues draws only: nothing is read back until state().
 // Needs a current context for its whole life.
 class GpuSimulator : public Simulator {
@@ -47,6 +47,7 @@ private:
     StepConstants m_k;
     Program m_program;
     PingPong m_pingPong;
+    Texture2D m_map; // TensorMap operators only
 };
 
 // The shader pieces of a model's step program (also used by the agreement

@@ -1,32 +1,85 @@
 // One explicit Euler step of reaction-diffusion on a grid:
-//   c' = clamp(c + dt * (react(c) + D * lap(c)), clampMin, clampMax)
-// The neighbours come from textureOffset with nearest filtering, so periodic
-// and clamped edges are the sampler's wrap mode (GL_REPEAT / GL_CLAMP_TO_EDGE),
-// not index arithmetic. Variant: STENCIL_9 selects the 9-point Laplacian.
+//   c' = clamp(c + dt * (react(c) + diffusion(c)), clampMin, clampMax)
+// Neighbours come from textureOffset with nearest filtering, so periodic and
+// clamped edges are the sampler's wrap mode (GL_REPEAT / GL_CLAMP_TO_EDGE),
+// not index arithmetic. One diffusion variant is defined in C++:
+//   (none)      rate * 5-point Laplacian
+//   STENCIL_9   rate * 9-point Laplacian
+//   KERNEL_3    a 3x3 mask per chemical (constant anisotropic tensor)
+//   KERNEL_5    a 5x5 kernel per chemical (generalized diffusion)
+//   TENSOR_MAP  div(A(x) grad c), A per texel from uMap, conservative form
 // react() comes from the model's snippet, compiled in front of this file.
+// Every vec4 holds up to four chemicals, one per component.
 
 uniform sampler2D uState;
 uniform vec2 uInvSize;
 uniform float uDt;
-uniform vec4 uDiffusion;
+uniform vec4 uDiffusion; // per-chemical rate (Laplacian variants)
 uniform vec4 uClampMin;
 uniform vec4 uClampMax;
+
+#if defined(KERNEL_3) || defined(KERNEL_5)
+uniform vec4 uKernel[25]; // weight of c(x + dx, y + dy) at (dy + 2) * 5 + dx + 2
+#endif
+#ifdef TENSOR_MAP
+uniform sampler2D uMap; // (s, s cos 2theta, s sin 2theta)
+uniform vec4 uMapM;     // per chemical: see DiffusionOperator in diffusion_operator.hpp
+uniform vec4 uMapDc;
+uniform vec4 uMapDs;
+#endif
 
 out vec4 outState;
 
 vec4 react(vec4 c);
 
+#define AT(dx, dy) textureOffset(uState, uv, ivec2(dx, dy))
+#define TAP(dx, dy) sum += uKernel[(dy + 2) * 5 + dx + 2] * AT(dx, dy)
+
+#ifdef TENSOR_MAP
+vec4 axx(vec4 m) { return uMapM * m.x + uMapDc * m.y - uMapDs * m.z; }
+vec4 ayy(vec4 m) { return uMapM * m.x - uMapDc * m.y + uMapDs * m.z; }
+vec4 axy(vec4 m) { return -(uMapDc * m.z + uMapDs * m.y); }
+#endif
+
+vec4 diffusion(vec2 uv, vec4 c) {
+#if defined(KERNEL_3) || defined(KERNEL_5)
+    vec4 sum = uKernel[12] * c;
+    TAP(-1, -1); TAP(0, -1); TAP(1, -1);
+    TAP(-1, 0);              TAP(1, 0);
+    TAP(-1, 1);  TAP(0, 1);  TAP(1, 1);
+#ifdef KERNEL_5
+    TAP(-2, -2); TAP(-1, -2); TAP(0, -2); TAP(1, -2); TAP(2, -2);
+    TAP(-2, -1);                                     TAP(2, -1);
+    TAP(-2, 0);                                      TAP(2, 0);
+    TAP(-2, 1);                                      TAP(2, 1);
+    TAP(-2, 2);  TAP(-1, 2);  TAP(0, 2);  TAP(1, 2);  TAP(2, 2);
+#endif
+    return sum;
+#elif defined(TENSOR_MAP)
+    vec4 l = AT(-1, 0), r = AT(1, 0), d = AT(0, -1), u = AT(0, 1);
+    vec4 mc = texture(uMap, uv);
+    vec4 ml = textureOffset(uMap, uv, ivec2(-1, 0)), mr = textureOffset(uMap, uv, ivec2(1, 0));
+    vec4 md = textureOffset(uMap, uv, ivec2(0, -1)), mu = textureOffset(uMap, uv, ivec2(0, 1));
+    // Face-averaged fluxes: the sum over a periodic grid telescopes, so mass is conserved.
+    vec4 xx = 0.5 * (axx(mc) + axx(mr)) * (r - c) - 0.5 * (axx(mc) + axx(ml)) * (c - l);
+    vec4 yy = 0.5 * (ayy(mc) + ayy(mu)) * (u - c) - 0.5 * (ayy(mc) + ayy(md)) * (c - d);
+    vec4 ru = AT(1, 1), rd = AT(1, -1), lu = AT(-1, 1), ld = AT(-1, -1);
+    vec4 xy = 0.25 * (axy(mr) * (ru - rd) - axy(ml) * (lu - ld)) +
+              0.25 * (axy(mu) * (ru - lu) - axy(md) * (rd - ld));
+    return xx + yy + xy;
+#else
+    vec4 sides = AT(-1, 0) + AT(1, 0) + AT(0, -1) + AT(0, 1);
+#ifdef STENCIL_9
+    vec4 corners = AT(-1, -1) + AT(1, -1) + AT(-1, 1) + AT(1, 1);
+    return uDiffusion * ((4.0 * sides + corners - 20.0 * c) * (1.0 / 6.0));
+#else
+    return uDiffusion * (sides - 4.0 * c);
+#endif
+#endif
+}
+
 void main() {
     vec2 uv = gl_FragCoord.xy * uInvSize;
     vec4 c = texture(uState, uv);
-    vec4 sides = textureOffset(uState, uv, ivec2(-1, 0)) + textureOffset(uState, uv, ivec2(1, 0)) +
-                 textureOffset(uState, uv, ivec2(0, -1)) + textureOffset(uState, uv, ivec2(0, 1));
-#ifdef STENCIL_9
-    vec4 corners = textureOffset(uState, uv, ivec2(-1, -1)) + textureOffset(uState, uv, ivec2(1, -1)) +
-                   textureOffset(uState, uv, ivec2(-1, 1)) + textureOffset(uState, uv, ivec2(1, 1));
-    vec4 lap = (4.0 * sides + corners - 20.0 * c) * (1.0 / 6.0);
-#else
-    vec4 lap = sides - 4.0 * c;
-#endif
-    outState = clamp(c + uDt * (react(c) + uDiffusion * lap), uClampMin, uClampMax);
+    outState = clamp(c + uDt * (react(c) + diffusion(uv, c)), uClampMin, uClampMax);
 }

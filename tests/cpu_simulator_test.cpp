@@ -20,7 +20,7 @@ Session pureDiffusion(EdgeMode edges, Stencil stencil) {
     s.params["k"] = 0.0f;
     s.params["Du"] = 0.2f;
     s.edges = edges;
-    s.stencil = stencil;
+    s.diffusion.stencil = stencil;
     return s;
 }
 

@@ -40,7 +40,7 @@ TEST(GpuCpuAgreement, EveryModelEdgeModeAndStencilAfter50Steps) {
                 Session s = test::smallSession(c.preset, 40, 50);
                 s.width = 48; // non-square catches swapped axes
                 s.edges = edges;
-                s.stencil = stencil;
+                s.diffusion.stencil = stencil;
                 SCOPED_TRACE(std::string(c.preset) + " " + toString(edges) + " " +
                              toString(stencil));
                 const State start = initial(s);

@@ -18,7 +18,7 @@ TEST(Stability, SuggestedDtIsBelowTheFailedOneAndTheLimit) {
     s.dt = 0.1f;
     const float dt = suggestDt(s);
     EXPECT_LT(dt, 0.1f);
-    EXPECT_LE(dt, stableDiffusionDt(s.stencil, 8.0f));
+    EXPECT_LE(dt, stableDiffusionDt(s.diffusion.stencil, 8.0f));
 }
 
 TEST(Stability, InsaneValuesAreFoundAndNamed) {

@@ -10,5 +10,6 @@ namespace morphogen::cli {
 void addRenderCommand(CLI::App& app);
 void addPresetsCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addPropagatorCommand(CLI::App& app);
 
 } // namespace morphogen::cli

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     morphogen::cli::addRenderCommand(app);
     morphogen::cli::addPresetsCommand(app);
     morphogen::cli::addBenchCommand(app);
+    morphogen::cli::addPropagatorCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

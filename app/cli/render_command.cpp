@@ -92,9 +92,9 @@ Session buildSession(const RenderFlags& f) {
     }
     if (!f.stencil.empty()) {
         if (f.stencil == "5-point" || f.stencil == "5")
-            s.stencil = Stencil::FivePoint;
+            s.diffusion.stencil = Stencil::FivePoint;
         else if (f.stencil == "9-point" || f.stencil == "9")
-            s.stencil = Stencil::NinePoint;
+            s.diffusion.stencil = Stencil::NinePoint;
         else
             throw InputError("--stencil '" + f.stencil + "' is unknown (accepted: 5-point, 9-point)");
     }

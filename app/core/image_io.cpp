@@ -1,6 +1,7 @@
 #include "core/image_io.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -109,6 +110,43 @@ void writeRawImage(const std::string& path, const State& state,
             px[i * std::size_t(nc) + std::size_t(c)] = p[i];
     }
     writeAtomically(path, spec, px.data());
+}
+
+} // namespace morphogen
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+namespace morphogen {
+
+std::vector<float> loadLuminance(const std::string& path, int width, int height) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError(path + ": image not found");
+    OIIO::ImageBuf source(path);
+    if (!source.read(0, 0, true, OIIO::TypeDesc::FLOAT))
+        throw InputError(path + ": cannot read the image (" + source.geterror() +
+                         "); accepted: any format OpenImageIO reads, e.g. PNG, TIFF, EXR, JPEG");
+    const OIIO::ImageSpec& spec = source.spec();
+    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
+        throw InputError(path + ": the image is empty");
+    OIIO::ImageBuf resized;
+    const OIIO::ROI roi(0, width, 0, height, 0, 1, 0, spec.nchannels);
+    if (!OIIO::ImageBufAlgo::resize(resized, source, "", 0.0f, roi))
+        throw InputError(path + ": cannot resample the image to " + std::to_string(width) + "x" +
+                         std::to_string(height) + ": " + resized.geterror());
+    std::vector<float> pixels(std::size_t(width) * height * std::size_t(spec.nchannels));
+    resized.get_pixels(roi, OIIO::TypeDesc::FLOAT, pixels.data());
+    std::vector<float> luminance(std::size_t(width) * height);
+    const std::size_t nc = std::size_t(spec.nchannels);
+    for (std::size_t i = 0; i < luminance.size(); ++i) {
+        const float* p = &pixels[i * nc];
+        const float l = nc >= 3 ? 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2] : p[0];
+        if (!std::isfinite(l))
+            throw InputError(path + ": the image holds NaN or infinite values");
+        luminance[i] = l;
+    }
+    return luminance;
 }
 
 } // namespace morphogen

@@ -28,3 +28,13 @@ void writeRawImage(const std::string& path, const State& state,
                    const std::vector<std::string>& channelNames);
 
 } // namespace morphogen
+
+namespace morphogen {
+
+// Loads an image's luminance (Rec. 709 weights over its first three
+// channels, or its only channel) resampled to width x height, row 0 at the
+// top, values as stored (0..1 for 8/16-bit files). Throws InputError naming
+// the file for a missing, unreadable or empty image.
+std::vector<float> loadLuminance(const std::string& path, int width, int height);
+
+} // namespace morphogen

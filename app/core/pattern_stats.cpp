@@ -73,4 +73,55 @@ SpectrumStats spectrumStats(const State& state, int chemical) {
     return stats;
 }
 
+double OrientationStats::moment(int k) const {
+    return std::hypot(re[std::size_t(k)], im[std::size_t(k)]);
+}
+
+double OrientationStats::momentPhaseDegrees(int k) const {
+    return std::atan2(im[std::size_t(k)], re[std::size_t(k)]) * 180.0 / 3.14159265358979323846;
+}
+
+OrientationStats orientationStats(const State& state, int chemical, int bins) {
+    constexpr double pi = 3.14159265358979323846;
+    const int w = state.width(), h = state.height();
+    auto at = [&](int x, int y) {
+        return double(state.at(chemical, (x + w) % w, (y + h) % h));
+    };
+    OrientationStats stats;
+    stats.histogram.assign(std::size_t(bins), 0.0);
+    stats.re.assign(13, 0.0);
+    stats.im.assign(13, 0.0);
+    double total = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            // Central differences; display y points up, rows grow down.
+            const double gx = 0.5 * (at(x + 1, y) - at(x - 1, y));
+            const double gy = -0.5 * (at(x, y + 1) - at(x, y - 1));
+            const double weight = std::hypot(gx, gy);
+            if (weight == 0)
+                continue;
+            double theta = std::atan2(gy, gx);
+            if (theta < 0)
+                theta += pi;
+            if (theta >= pi)
+                theta -= pi;
+            stats.histogram[std::min(std::size_t(bins - 1), std::size_t(theta / pi * bins))] +=
+                weight;
+            for (int k = 2; k <= 12; k += 2) {
+                stats.re[std::size_t(k)] += weight * std::cos(k * theta);
+                stats.im[std::size_t(k)] += weight * std::sin(k * theta);
+            }
+            total += weight;
+        }
+    if (total > 0) {
+        for (double& v : stats.histogram)
+            v /= total;
+        for (std::size_t k = 0; k < stats.re.size(); ++k) {
+            stats.re[k] /= total;
+            stats.im[k] /= total;
+        }
+    }
+    return stats;
+}
+
 } // namespace morphogen

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <vector>
+
 #include "core/state.hpp"
 
 namespace morphogen {
@@ -14,5 +16,20 @@ struct SpectrumStats {
 
 // Spectrum statistics of one chemical plane (periodic: the grid is one tile).
 SpectrumStats spectrumStats(const State& state, int chemical);
+
+// How a pattern's edges are oriented: a magnitude-weighted histogram of the
+// gradient direction over [0, 180) degrees (display convention: counter-
+// clockwise from +x), and its angular Fourier moments. A stripe runs
+// perpendicular to its gradient. For a pattern with n preferred gradient
+// directions spaced 180/n apart, |moment(2n)| stands out; its phase tells
+// where they sit (two directions: Re moment(4) > 0 along the axes, < 0 diagonal).
+struct OrientationStats {
+    std::vector<double> histogram; // normalised to sum 1
+    // Re/Im of mean(w * exp(i k theta)) / mean(w), k = 2, 4, 6, 8, 12.
+    double moment(int k) const;
+    double momentPhaseDegrees(int k) const;
+    std::vector<double> re, im; // index k
+};
+OrientationStats orientationStats(const State& state, int chemical, int bins = 36);
 
 } // namespace morphogen

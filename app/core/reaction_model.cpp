@@ -5,6 +5,7 @@
 #include "core/models/gray_scott.hpp"
 #include "core/models/turing_mcgraw.hpp"
 #include "core/models/turing_turk.hpp"
+#include "core/models/witkin_kass.hpp"
 
 namespace morphogen {
 
@@ -38,7 +39,8 @@ std::vector<const ReactionModel*> allModels() {
     static const GrayScottModel grayScott;
     static const TuringTurkModel turingTurk;
     static const TuringMcGrawModel turingMcGraw;
-    return {&grayScott, &turingTurk, &turingMcGraw};
+    static const WitkinKassModel witkinKass;
+    return {&grayScott, &turingTurk, &turingMcGraw, &witkinKass};
 }
 
 const ReactionModel* findModel(const std::string& name) {

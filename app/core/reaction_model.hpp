@@ -43,10 +43,21 @@ struct RowView {
     int n = 0;
 };
 
+// The C++ reaction of a model, one cell at a time. Each built-in model defines
+// one (GrayScottModel::Cell, ...) so the CPU backend can instantiate a fused
+// step kernel over it, with the reaction inlined into the stencil loop; a
+// virtual call per row and the row buffers between passes cost ~3x. A Cell has
+//   static constexpr int kChemicals;
+//   static constexpr bool diffuses(int chemical); // false: no diffusionParam
+//   explicit Cell(const float* params);           // packParams() layout
+//   void react(const float* c, float* dcdt) const;
+// react() must be plain arithmetic, free of branches and calls, so it
+// vectorises across cells. models/react_row.hpp turns a Cell into react().
+
 // A reaction model: its chemicals, its parameters and its reaction function,
 // written twice from one description: a GLSL snippet (glsl/models/NAME.glsl,
-// defining `vec4 react(vec4 c)` over uniforms p_<param>) and the C++ row loop
-// below. A gltest proves the two agree.
+// defining `vec4 react(vec4 c)` over uniforms p_<param>) and the C++ Cell
+// above. A gltest proves the two agree.
 class ReactionModel {
 public:
     virtual ~ReactionModel() = default;
@@ -69,7 +80,9 @@ public:
     // Parameter values in declaration order, the layout react() reads.
     std::vector<float> packParams(const ParamValues& values) const;
 
-    // dc/dt of the reaction term for one row of cells.
+    // dc/dt of the reaction term for one row of cells. The CPU backend's
+    // generic path: used for models it has no fused kernel for, and for runs
+    // where a chemical that normally diffuses has a diffusion rate of 0.
     virtual void react(const RowView& row, const float* params) const = 0;
 
     // Fills model-owned per-cell fields after the initial condition (Turk's

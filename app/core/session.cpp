@@ -11,16 +11,13 @@
 
 #include "core/embedded_files.hpp"
 #include "core/errors.hpp"
+#include "core/json_fields.hpp"
 
 namespace morphogen {
 
 using nlohmann::json;
 
 std::string toString(EdgeMode mode) { return mode == EdgeMode::Periodic ? "periodic" : "clamped"; }
-
-std::string toString(Stencil stencil) {
-    return stencil == Stencil::FivePoint ? "5-point" : "9-point";
-}
 
 const ReactionModel& Session::reactionModel() const {
     const ReactionModel* m = findModel(model);
@@ -29,97 +26,6 @@ const ReactionModel& Session::reactionModel() const {
 }
 
 namespace {
-
-std::string typeName(const json& j) { return j.type_name(); }
-
-// Reads fields of one JSON object and reports problems as "source: field 'a.b' ...".
-class FieldReader {
-public:
-    FieldReader(const json& object, std::string source, std::string prefix)
-        : m_object(object), m_source(std::move(source)), m_prefix(std::move(prefix)) {
-        if (!m_object.is_object())
-            fail(m_prefix.empty() ? "the top level" : "field '" + m_prefix + "'",
-                 "must be a JSON object, got " + typeName(m_object));
-    }
-
-    [[noreturn]] void fail(const std::string& what, const std::string& problem) const {
-        throw InputError(m_source + ": " + what + " " + problem);
-    }
-    std::string path(const std::string& key) const {
-        return m_prefix.empty() ? key : m_prefix + "." + key;
-    }
-    [[noreturn]] void failField(const std::string& key, const std::string& problem) const {
-        fail("field '" + path(key) + "'", problem);
-    }
-
-    const json* find(const std::string& key) const {
-        auto it = m_object.find(key);
-        return it == m_object.end() ? nullptr : &*it;
-    }
-
-    void rejectUnknown(std::initializer_list<const char*> known) const {
-        for (auto it = m_object.begin(); it != m_object.end(); ++it) {
-            bool ok = false;
-            std::string list;
-            for (const char* k : known) {
-                ok = ok || it.key() == k;
-                list += (list.empty() ? "" : ", ") + std::string(k);
-            }
-            if (!ok)
-                fail("unknown field '" + path(it.key()) + "'", "(accepted: " + list + ")");
-        }
-    }
-
-    std::string string(const std::string& key, const std::string& fallback) const {
-        const json* j = find(key);
-        if (!j)
-            return fallback;
-        if (!j->is_string())
-            failField(key, "must be a string, got " + typeName(*j));
-        return j->get<std::string>();
-    }
-
-    double number(const std::string& key, double fallback, double min, double max) const {
-        const json* j = find(key);
-        if (!j)
-            return fallback;
-        return numberValue(*j, key, min, max);
-    }
-
-    double numberValue(const json& j, const std::string& key, double min, double max) const {
-        if (!j.is_number())
-            failField(key, "must be a number, got " + typeName(j));
-        const double v = j.get<double>();
-        if (!std::isfinite(v) || v < min || v > max) {
-            std::ostringstream os;
-            os << "is " << v << ", accepted range is [" << min << ", " << max << "]";
-            failField(key, os.str());
-        }
-        return v;
-    }
-
-    long long integer(const std::string& key, long long fallback, long long min,
-                      long long max) const {
-        const json* j = find(key);
-        if (!j)
-            return fallback;
-        if (!j->is_number_integer())
-            failField(key, "must be an integer, got " + typeName(*j));
-        const long long v = j->is_number_unsigned() ? (long long)j->get<unsigned long long>()
-                                                    : j->get<long long>();
-        if (v < min || v > max)
-            failField(key, "is " + std::to_string(v) + ", accepted range is [" +
-                               std::to_string(min) + ", " + std::to_string(max) + "]");
-        return v;
-    }
-
-    const std::string& source() const { return m_source; }
-
-private:
-    const json& m_object;
-    std::string m_source;
-    std::string m_prefix;
-};
 
 std::map<std::string, float> chemicalValues(const FieldReader& parent, const std::string& key,
                                             const ReactionModel& model) {
@@ -166,7 +72,7 @@ std::string paramNames(const ReactionModel& model) {
 
 Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
-    top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "stencil",
+    top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
                        "integrator", "dt", "steps", "seed", "init", "colormap"});
     Session s;
     s.name = top.string("name", "");
@@ -217,13 +123,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
     else
         top.failField("edges", "is '" + edges + "', accepted: periodic, clamped");
 
-    const std::string stencil = top.string("stencil", "5-point");
-    if (stencil == "5-point")
-        s.stencil = Stencil::FivePoint;
-    else if (stencil == "9-point")
-        s.stencil = Stencil::NinePoint;
-    else
-        top.failField("stencil", "is '" + stencil + "', accepted: 5-point, 9-point");
+    if (const json* diffusion = top.find("diffusion"))
+        s.diffusion = diffusionFromJson(*diffusion, source, *model);
 
     const std::string integrator = top.string("integrator", "explicit_euler");
     if (integrator != "explicit_euler")
@@ -284,7 +185,7 @@ json sessionToJson(const Session& s) {
     j["params"] = s.params;
     j["size"] = json::array({s.width, s.height});
     j["edges"] = toString(s.edges);
-    j["stencil"] = toString(s.stencil);
+    j["diffusion"] = diffusionToJson(s.diffusion);
     j["integrator"] = "explicit_euler";
     j["dt"] = s.dt;
     j["steps"] = s.steps;
@@ -323,6 +224,7 @@ Session loadSessionFile(const std::string& path) {
         throw InputError(path + ": not valid JSON: " + e.what());
     }
     Session s = sessionFromJson(j, path);
+    s.baseDir = std::filesystem::path(path).parent_path().string();
     validateSession(s, path);
     return s;
 }

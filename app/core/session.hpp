@@ -7,17 +7,12 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "core/diffusion_spec.hpp"
 #include "core/grid_domain.hpp"
 #include "core/initial_condition.hpp"
 #include "core/reaction_model.hpp"
 
 namespace morphogen {
-
-enum class Stencil {
-    FivePoint, // lap = l + r + u + d - 4c
-    NinePoint, // lap = (4 (l + r + u + d) + corners - 20c) / 6: more isotropic
-};
-std::string toString(Stencil stencil);
 
 struct ColorMapSpec {
     std::string name = "grey"; // see colormap.hpp for the list
@@ -37,12 +32,15 @@ struct Session {
     int width = 256;
     int height = 256;
     EdgeMode edges = EdgeMode::Periodic;
-    Stencil stencil = Stencil::FivePoint;
+    DiffusionSpec diffusion;
     float dt = 1.0f;
     int steps = 1000;
     std::uint64_t seed = 1;
     InitialCondition init;
     ColorMapSpec colormap;
+    // Folder that relative paths in the session (images) resolve against; set
+    // by loadSessionFile, not serialised.
+    std::string baseDir;
 
     GridDomain domain() const { return {width, height, edges}; }
     const ReactionModel& reactionModel() const; // asserts a known model

@@ -7,9 +7,10 @@ StepConstants StepConstants::fromSession(const Session& session) {
     StepConstants k;
     k.chemicals = int(model.chemicals().size());
     k.dt = session.dt;
-    k.stencil = session.stencil;
+    k.stencil = session.diffusion.stencil;
     k.domain = session.domain();
     k.params = model.packParams(session.params);
+    k.op = compileDiffusion(session);
     for (int c = 0; c < 4; ++c) {
         if (c < k.chemicals) {
             const ChemicalSpec& spec = model.chemicals()[std::size_t(c)];

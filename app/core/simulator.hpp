@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/diffusion_operator.hpp"
 #include "core/session.hpp"
 #include "core/state.hpp"
 
@@ -21,6 +22,7 @@ struct StepConstants {
     std::vector<float> params; // model declaration order
     Stencil stencil = Stencil::FivePoint;
     GridDomain domain;
+    DiffusionOperator op;
 
     static StepConstants fromSession(const Session& session);
 };

@@ -1,5 +1,7 @@
 #include "core/stability.hpp"
 
+#include "core/diffusion_operator.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -14,13 +16,10 @@ float stableDiffusionDt(Stencil stencil, float maxDiffusion) {
 }
 
 float suggestDt(const Session& session) {
-    const ReactionModel& model = session.reactionModel();
-    float maxD = 0.0f;
-    for (const ChemicalSpec& c : model.chemicals())
-        if (!c.diffusionParam.empty())
-            maxD = std::max(maxD, session.params.at(c.diffusionParam));
+    const double bound = diffusionSymbolBound(compileDiffusion(session));
+    const float limit = bound > 0 ? float(2.0 / bound) : std::numeric_limits<float>::infinity();
     // 0.8 of the diffusion limit leaves room for the reaction term's own stiffness.
-    return std::min(0.5f * session.dt, 0.8f * stableDiffusionDt(session.stencil, maxD));
+    return std::min(0.5f * session.dt, 0.8f * limit);
 }
 
 std::optional<std::string> findInsaneValue(const State& state, const ReactionModel& model) {

@@ -1,5 +1,7 @@
 #include "core/models/gray_scott.hpp"
 
+#include "core/models/react_row.hpp"
+
 namespace morphogen {
 
 GrayScottModel::GrayScottModel() {
@@ -27,17 +29,7 @@ GrayScottModel::GrayScottModel() {
 }
 
 void GrayScottModel::react(const RowView& row, const float* p) const {
-    const float F = p[0], k = p[1];
-    const float* u = row.c[0];
-    const float* v = row.c[1];
-    float* du = row.dcdt[0];
-    float* dv = row.dcdt[1];
-#pragma omp simd
-    for (int i = 0; i < row.n; ++i) {
-        const float uvv = u[i] * v[i] * v[i];
-        du[i] = -uvv + F * (1.0f - u[i]);
-        dv[i] = uvv - (F + k) * v[i];
-    }
+    reactRow<Cell>(row, p);
 }
 
 } // namespace morphogen

@@ -10,6 +10,18 @@ namespace morphogen {
 // gives Du = 0.2097, Dv = 0.105 per cell^2 (we step with dt = 0.9, see the .cpp).
 class GrayScottModel : public ReactionModel {
 public:
+    struct Cell {
+        static constexpr int kChemicals = 2;
+        static constexpr bool diffuses(int) { return true; }
+        explicit Cell(const float* p) : F(p[0]), k(p[1]) {}
+        void react(const float* c, float* dcdt) const {
+            const float uvv = c[0] * c[1] * c[1];
+            dcdt[0] = -uvv + F * (1.0f - c[0]);
+            dcdt[1] = uvv - (F + k) * c[1];
+        }
+        float F, k;
+    };
+
     GrayScottModel();
     void react(const RowView& row, const float* params) const override;
 };

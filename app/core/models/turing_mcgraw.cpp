@@ -1,5 +1,7 @@
 #include "core/models/turing_mcgraw.hpp"
 
+#include "core/models/react_row.hpp"
+
 namespace morphogen {
 
 TuringMcGrawModel::TuringMcGrawModel() {
@@ -18,17 +20,7 @@ TuringMcGrawModel::TuringMcGrawModel() {
 }
 
 void TuringMcGrawModel::react(const RowView& row, const float* p) const {
-    const float alpha = p[0], beta = p[1];
-    const float* u = row.c[0];
-    const float* v = row.c[1];
-    float* du = row.dcdt[0];
-    float* dv = row.dcdt[1];
-#pragma omp simd
-    for (int i = 0; i < row.n; ++i) {
-        const float uv = u[i] * v[i];
-        du[i] = uv - u[i] - alpha;
-        dv[i] = beta - uv;
-    }
+    reactRow<Cell>(row, p);
 }
 
 } // namespace morphogen

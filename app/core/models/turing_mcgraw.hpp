@@ -16,6 +16,18 @@ namespace morphogen {
 // u, v >= 0 is enforced: without it every run tried went to NaN.
 class TuringMcGrawModel : public ReactionModel {
 public:
+    struct Cell {
+        static constexpr int kChemicals = 2;
+        static constexpr bool diffuses(int) { return true; }
+        explicit Cell(const float* p) : alpha(p[0]), beta(p[1]) {}
+        void react(const float* c, float* dcdt) const {
+            const float uv = c[0] * c[1];
+            dcdt[0] = uv - c[0] - alpha;
+            dcdt[1] = beta - uv;
+        }
+        float alpha, beta;
+    };
+
     TuringMcGrawModel();
     void react(const RowView& row, const float* params) const override;
 };

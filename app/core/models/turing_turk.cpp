@@ -1,5 +1,6 @@
 #include "core/models/turing_turk.hpp"
 
+#include "core/models/react_row.hpp"
 #include "core/random.hpp"
 
 namespace morphogen {
@@ -22,20 +23,7 @@ TuringTurkModel::TuringTurkModel() {
 }
 
 void TuringTurkModel::react(const RowView& row, const float* p) const {
-    const float s = p[0];
-    const float* a = row.c[0];
-    const float* b = row.c[1];
-    const float* beta = row.c[2];
-    float* da = row.dcdt[0];
-    float* db = row.dcdt[1];
-    float* dbeta = row.dcdt[2];
-#pragma omp simd
-    for (int i = 0; i < row.n; ++i) {
-        const float ab = a[i] * b[i];
-        da[i] = s * (16.0f - ab);
-        db[i] = s * (ab - b[i] - beta[i]);
-        dbeta[i] = 0.0f;
-    }
+    reactRow<Cell>(row, p);
 }
 
 void TuringTurkModel::prepareState(State& state, const ParamValues& values,

@@ -19,6 +19,20 @@ namespace morphogen {
 // ~5000 steps. b must be clamped at 0 or both sizes blow up.
 class TuringTurkModel : public ReactionModel {
 public:
+    struct Cell {
+        static constexpr int kChemicals = 3;
+        // beta is a fixed per-cell field, not a chemical that spreads.
+        static constexpr bool diffuses(int chemical) { return chemical != 2; }
+        explicit Cell(const float* p) : s(p[0]) {}
+        void react(const float* c, float* dcdt) const {
+            const float ab = c[0] * c[1];
+            dcdt[0] = s * (16.0f - ab);
+            dcdt[1] = s * (ab - c[1] - c[2]);
+            dcdt[2] = 0.0f;
+        }
+        float s;
+    };
+
     TuringTurkModel();
     void react(const RowView& row, const float* params) const override;
     void prepareState(State& state, const ParamValues& values, std::uint64_t seed) const override;

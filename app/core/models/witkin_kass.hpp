@@ -1,0 +1,32 @@
+#pragma once
+
+#include "core/reaction_model.hpp"
+
+namespace morphogen {
+
+// Witkin & Kass's threshold system (eq. 1 and 13) for two morphogens C+ (p)
+// and C- (m):
+//   dC/dt = A : H(C) - b C + R,   R = k where C+ > C-, else 0 (for both)
+// Patterns come from the two diffusing differently: give them different
+// anisotropic tensors (section 6.2's zebra: P+ = [theta, e s, s],
+// P- = [theta, e s, d s]) or different isotropic rates Dp, Dm.
+class WitkinKassModel : public ReactionModel {
+public:
+    struct Cell {
+        static constexpr int kChemicals = 2;
+        static constexpr bool diffuses(int) { return true; }
+        explicit Cell(const float* p) : k(p[0]), b(p[1]) {}
+        void react(const float* c, float* dcdt) const {
+            // A select, not a branch: it vectorises.
+            const float r = c[0] > c[1] ? k : 0.0f;
+            dcdt[0] = r - b * c[0];
+            dcdt[1] = r - b * c[1];
+        }
+        float k, b;
+    };
+
+    WitkinKassModel();
+    void react(const RowView& row, const float* params) const override;
+};
+
+} // namespace morphogen
