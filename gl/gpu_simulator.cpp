@@ -53,6 +53,25 @@ GpuSimulator::GpuSimulator(const Session& session)
     : m_k(StepConstants::fromSession(session)),
       m_pingPong(session.width, session.height, stateFormat(m_k.chemicals),
                  session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE) {
+    const DiffusionOperator& op = m_k.op;
+    const bool semiImplicit = m_k.integrator == Integrator::SemiImplicit;
+    m_program = buildProgram(session, semiImplicit ? "JACOBI_PASS" : nullptr);
+    if (semiImplicit) {
+        m_program.use();
+        glUniform1i(m_program.uniform("uRhs"), 2);
+        setVec4(m_program.uniform("uCentre"), m_k.centre);
+        m_rhsProgram = buildProgram(session, "RHS_PASS");
+        m_rhs = Texture2D(session.width, session.height, stateFormat(m_k.chemicals));
+        m_rhsFramebuffer = Framebuffer(m_rhs);
+    }
+    if (op.form == DiffusionOperator::Form::TensorMap) {
+        m_map = Texture2D(session.width, session.height, GL_RGBA32F);
+        m_map.setWrap(session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+        m_map.uploadRgba(op.map.toRgba());
+    }
+}
+
+Program GpuSimulator::buildProgram(const Session& session, const char* pass) const {
     const ReactionModel& model = session.reactionModel();
     using Form = DiffusionOperator::Form;
     const DiffusionOperator& op = m_k.op;
@@ -73,19 +92,20 @@ GpuSimulator::GpuSimulator(const Session& session)
         defines.push_back("TENSOR_MAP");
         break;
     }
-    m_program = Program({embeddedShader("glsl/fullscreen.vert")}, stepFragmentPieces(model),
-                        defines);
+    if (pass)
+        defines.push_back(pass);
+    Program program({embeddedShader("glsl/fullscreen.vert")}, stepFragmentPieces(model), defines);
 
-    m_program.use();
-    glUniform1i(m_program.uniform("uState"), 0);
-    glUniform2f(m_program.uniform("uInvSize"), 1.0f / float(session.width),
+    program.use();
+    glUniform1i(program.uniform("uState"), 0);
+    glUniform2f(program.uniform("uInvSize"), 1.0f / float(session.width),
                 1.0f / float(session.height));
-    glUniform1f(m_program.uniform("uDt"), m_k.dt);
-    setVec4(m_program.uniform("uDiffusion"), op.rates);
-    setVec4(m_program.uniform("uClampMin"), m_k.clampMin);
-    setVec4(m_program.uniform("uClampMax"), m_k.clampMax);
+    glUniform1f(program.uniform("uDt"), m_k.dt);
+    setVec4(program.uniform("uDiffusion"), op.rates);
+    setVec4(program.uniform("uClampMin"), m_k.clampMin);
+    setVec4(program.uniform("uClampMax"), m_k.clampMax);
     for (std::size_t i = 0; i < model.params().size(); ++i)
-        glUniform1f(m_program.uniform(("p_" + model.params()[i].name).c_str()), m_k.params[i]);
+        glUniform1f(program.uniform(("p_" + model.params()[i].name).c_str()), m_k.params[i]);
 
     if (op.form == Form::Kernel3 || op.form == Form::Kernel5) {
         // One vec4 per tap, one component per chemical.
@@ -93,23 +113,28 @@ GpuSimulator::GpuSimulator(const Session& session)
         for (std::size_t tap = 0; tap < 25; ++tap)
             for (int c = 0; c < op.chemicals; ++c)
                 weights[tap * 4 + std::size_t(c)] = float(op.kernels[std::size_t(c)].w[tap]);
-        glUniform4fv(m_program.uniform("uKernel"), 25, weights.data());
+        glUniform4fv(program.uniform("uKernel"), 25, weights.data());
     }
     if (op.form == Form::TensorMap) {
-        m_map = Texture2D(session.width, session.height, GL_RGBA32F);
-        m_map.setWrap(session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-        m_map.uploadRgba(op.map.toRgba());
-        glUniform1i(m_program.uniform("uMap"), 1);
+        glUniform1i(program.uniform("uMap"), 1);
         std::array<float, 4> m{}, dc{}, ds{};
         for (int c = 0; c < op.chemicals; ++c) {
             m[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][0];
             dc[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][1];
             ds[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][2];
         }
-        setVec4(m_program.uniform("uMapM"), m);
-        setVec4(m_program.uniform("uMapDc"), dc);
-        setVec4(m_program.uniform("uMapDs"), ds);
+        setVec4(program.uniform("uMapM"), m);
+        setVec4(program.uniform("uMapDc"), dc);
+        setVec4(program.uniform("uMapDs"), ds);
     }
+    return program;
+}
+
+void GpuSimulator::bindAuxiliaryTextures() const {
+    if (m_map.id())
+        m_map.bind(1);
+    if (m_rhs.id())
+        m_rhs.bind(2);
 }
 
 void GpuSimulator::setState(const State& state) { m_pingPong.current().uploadRgba(state.toRgba()); }
@@ -120,9 +145,21 @@ State GpuSimulator::state() const {
 }
 
 void GpuSimulator::run(int steps) {
-    if (m_map.id())
-        m_map.bind(1);
-    m_pingPong.run(m_program, steps);
+    bindAuxiliaryTextures();
+    if (m_k.integrator == Integrator::ExplicitEuler) {
+        m_pingPong.run(m_program, steps);
+        return;
+    }
+    for (int i = 0; i < steps; ++i) {
+        // rhs = c + dt f(c), then Jacobi sweeps from x0 = c.
+        m_rhsProgram.use();
+        m_pingPong.vertexArray().bind();
+        m_rhsFramebuffer.bind();
+        m_pingPong.current().bind(0);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        m_pingPong.run(m_program, m_k.jacobiSweeps);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 CopyPass::CopyPass(int width, int height, GLenum internalFormat)

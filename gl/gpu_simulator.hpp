@@ -15,6 +15,7 @@ public:
     PingPong(int width, int height, GLenum internalFormat, GLenum wrap);
     void run(const Program& program, int passes);
     Texture2D& current() { return m_textures[std::size_t(m_current)]; }
+    const VertexArray& vertexArray() const { return m_vao; }
     const Texture2D& current() const { return m_textures[std::size_t(m_current)]; }
 
 private:
@@ -44,10 +45,19 @@ public:
     void run(int steps) override;
 
 private:
+    // Compiles glsl/step.frag with the operator's variant plus `pass`, and
+    // sets the uniforms every variant shares.
+    Program buildProgram(const Session& session, const char* pass) const;
+    void bindAuxiliaryTextures() const;
+
     StepConstants m_k;
-    Program m_program;
+    Program m_program; // explicit step, or the Jacobi sweep
     PingPong m_pingPong;
     Texture2D m_map; // TensorMap operators only
+    // SemiImplicit: the right-hand-side pass and its target.
+    Program m_rhsProgram;
+    Texture2D m_rhs;
+    Framebuffer m_rhsFramebuffer;
 };
 
 // The shader pieces of a model's step program (also used by the agreement

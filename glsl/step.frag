@@ -8,6 +8,8 @@
 //   KERNEL_3    a 3x3 mask per chemical (constant anisotropic tensor)
 //   KERNEL_5    a 5x5 kernel per chemical (generalized diffusion)
 //   TENSOR_MAP  div(A(x) grad c), A per texel from uMap, conservative form
+// The integrator is a second variant: (none) explicit Euler; RHS_PASS and
+// JACOBI_PASS the two passes of a semi-implicit step.
 // react() comes from the model's snippet, compiled in front of this file.
 // Every vec4 holds up to four chemicals, one per component.
 
@@ -78,8 +80,29 @@ vec4 diffusion(vec2 uv, vec4 c) {
 #endif
 }
 
+#if defined(RHS_PASS)
+// Semi-implicit, first pass: the right-hand side c + dt f(c).
+void main() {
+    vec2 uv = gl_FragCoord.xy * uInvSize;
+    vec4 c = texture(uState, uv);
+    outState = c + uDt * react(c);
+}
+#elif defined(JACOBI_PASS)
+// Semi-implicit, one Jacobi sweep on (I - dt A) x = rhs: uState holds the
+// current iterate, uCentre each chemical's kernel centre weight.
+uniform sampler2D uRhs;
+uniform vec4 uCentre;
+void main() {
+    vec2 uv = gl_FragCoord.xy * uInvSize;
+    vec4 x = texture(uState, uv);
+    vec4 offDiagonal = diffusion(uv, x) - uCentre * x;
+    outState = clamp((texture(uRhs, uv) + uDt * offDiagonal) / (1.0 - uDt * uCentre), uClampMin,
+                     uClampMax);
+}
+#else
 void main() {
     vec2 uv = gl_FragCoord.xy * uInvSize;
     vec4 c = texture(uState, uv);
     outState = clamp(c + uDt * (react(c) + diffusion(uv, c)), uClampMin, uClampMax);
 }
+#endif

@@ -57,10 +57,22 @@ if(EXISTS "${WORK}/a.png")
 endif()
 
 # A blow-up stops with the step and a dt to try, and writes no image.
-run(1 "try a smaller time step such as --dt" render --preset gs_coral --size 16 --steps 400 --dt 5 --backend cpu --out blown.png)
+run(1 "try a smaller time step such as --dt" render --preset mcgraw_turing --size 32 --steps 1000 --dt 0.031 --backend cpu --out blown.png)
 if(EXISTS "${WORK}/blown.png")
   message(SEND_ERROR "a blown-up run wrote an image")
 endif()
+
+# A dt beyond the explicit limit from the operator's symbol is capped, and says so.
+run(0 "exceeds the explicit stability limit 1.192" render --preset gs_coral --size 16 --steps 20 --dt 5 --backend cpu --out capped.png)
+file(READ "${WORK}/capped.json" capped)
+string(FIND "${capped}" "\"dt\": 1.07" at)
+if(at EQUAL -1)
+  message(SEND_ERROR "the capped dt is not what the session records: ${capped}")
+endif()
+# An operator that grows for every dt is refused.
+file(WRITE "${WORK}/unstable.json" "{\"model\": \"gray_scott\", \"size\": 16, \"steps\": 5,
+  \"diffusion\": {\"type\": \"generalized\", \"tensors\": {\"u\": \"d\", \"v\": \"d\"}, \"stabilize\": false}}")
+run(2 "grow for every explicit time step" render --session unstable.json --backend cpu --out unstable.png)
 
 # A real render on each backend, then the written session reproduces it exactly.
 foreach(backend cpu gpu)

@@ -25,11 +25,13 @@ std::optional<gl::ContextKind> parseContextFlag(const std::string& text) {
     return kind;
 }
 
-Backend makeBackend(const Session& session, BackendChoice choice,
-                    std::optional<gl::ContextKind> contextKind) {
+Backend makeBackend(BackendChoice choice, std::optional<gl::ContextKind> contextKind) {
+    auto cpu = [](const Session& s) -> std::unique_ptr<Simulator> {
+        return std::make_unique<CpuSimulator>(s);
+    };
     Backend backend;
     if (choice == BackendChoice::Cpu) {
-        backend.simulator = std::make_unique<CpuSimulator>(session);
+        backend.makeSimulator = cpu;
         backend.reason = "cpu backend (requested)";
         return backend;
     }
@@ -38,7 +40,7 @@ Backend makeBackend(const Session& session, BackendChoice choice,
     } catch (const std::exception& e) {
         if (choice == BackendChoice::Gpu)
             throw;
-        backend.simulator = std::make_unique<CpuSimulator>(session);
+        backend.makeSimulator = cpu;
         backend.reason = std::string("cpu backend (auto: no GL context: ") + e.what() + ")";
         return backend;
     }
@@ -46,12 +48,14 @@ Backend makeBackend(const Session& session, BackendChoice choice,
     const std::string where = gl::toString(backend.context->kind()) + ", " + renderer;
     if (choice == BackendChoice::Auto && backend.context->isSoftwareRenderer()) {
         backend.context.reset();
-        backend.simulator = std::make_unique<CpuSimulator>(session);
+        backend.makeSimulator = cpu;
         backend.reason = "cpu backend (auto: the GL renderer is the software rasterizer " +
                          renderer + ", slower than the CPU backend; --backend gpu forces it)";
         return backend;
     }
-    backend.simulator = std::make_unique<gl::GpuSimulator>(session);
+    backend.makeSimulator = [](const Session& s) -> std::unique_ptr<Simulator> {
+        return std::make_unique<gl::GpuSimulator>(s);
+    };
     backend.reason = std::string("gpu backend (") +
                      (choice == BackendChoice::Gpu ? "requested" : "auto") + ": " + where + ")";
     return backend;

@@ -13,6 +13,7 @@
 #include "core/initial_condition.hpp"
 #include "core/runner.hpp"
 #include "core/session.hpp"
+#include "core/stability.hpp"
 
 namespace morphogen::cli {
 
@@ -40,6 +41,8 @@ struct RenderFlags {
     std::vector<std::string> params;
     std::string edges;
     std::string stencil;
+    std::string integrator;
+    int sweeps = -1;
     std::string backend = "auto";
     std::string context;
     std::string colormap;
@@ -70,10 +73,27 @@ Session buildSession(const RenderFlags& f) {
         throw InputError("--preset and --session are exclusive: give one");
     Session s = !f.sessionFile.empty() ? loadSessionFile(f.sessionFile)
                                        : loadPreset(f.preset.empty() ? kDefaultPreset : f.preset);
+    if (!s.schedule.empty() && (!f.size.empty() || f.steps >= 0))
+        throw InputError("--size and --steps do not apply to a session with a coarse-to-fine "
+                         "\"schedule\": edit its levels instead");
     if (!f.size.empty())
         parseSize(f.size, s);
     if (f.steps >= 0)
         s.steps = f.steps;
+    if (!f.integrator.empty()) {
+        if (f.integrator == "explicit_euler")
+            s.integrator = Integrator::ExplicitEuler;
+        else if (f.integrator == "semi_implicit")
+            s.integrator = Integrator::SemiImplicit;
+        else
+            throw InputError("--integrator '" + f.integrator +
+                             "' is unknown (accepted: explicit_euler, semi_implicit)");
+    }
+    if (f.sweeps != -1) {
+        if (f.sweeps < 1 || f.sweeps > 1000)
+            throw InputError("--sweeps " + std::to_string(f.sweeps) + ": accepted are 1..1000");
+        s.jacobiSweeps = f.sweeps;
+    }
     if (f.seed >= 0)
         s.seed = std::uint64_t(f.seed);
     if (f.dt > 0)
@@ -91,6 +111,9 @@ Session buildSession(const RenderFlags& f) {
             throw InputError("--edges '" + f.edges + "' is unknown (accepted: periodic, clamped)");
     }
     if (!f.stencil.empty()) {
+        if (s.diffusion.type != DiffusionType::Isotropic)
+            throw InputError("--stencil applies to isotropic diffusion only; this session's is " +
+                             toString(s.diffusion.type));
         if (f.stencil == "5-point" || f.stencil == "5")
             s.diffusion.stencil = Stencil::FivePoint;
         else if (f.stencil == "9-point" || f.stencil == "9")
@@ -106,6 +129,41 @@ Session buildSession(const RenderFlags& f) {
     colormapChemical(s.colormap, s.reactionModel());
     validateSession(s, f.sessionFile.empty() ? "preset " + s.name : f.sessionFile);
     return s;
+}
+
+// Explicit steps: report the spectral radius of I + dt A from the operator's
+// Fourier symbol; refuse an operator that grows for every dt, cap a dt above
+// the limit (saying so; the written session records the capped dt).
+void checkStability(Session& session) {
+    if (session.integrator != Integrator::ExplicitEuler)
+        return;
+    const ExplicitStability st =
+        explicitStability(compileDiffusion(session), session.width, session.height, session.dt);
+    if (!st.maxStableDt) {
+        std::ostringstream os;
+        os << "the diffusion operator has Fourier modes that grow for every explicit time step "
+              "(max Re(lambda) = "
+           << st.maxRealPart
+           << "); set \"stabilize\": true in its diffusion block, or use --integrator "
+              "semi_implicit";
+        throw InputError(os.str());
+    }
+    if (session.dt > *st.maxStableDt) {
+        const float capped = float(0.9 * *st.maxStableDt);
+        std::fprintf(stderr,
+                     "morphogen: warning: dt %g exceeds the explicit stability limit %.4g "
+                     "(%s); capped to %.4g\n",
+                     session.dt, *st.maxStableDt,
+                     st.exact ? "spectral radius of I + dt A from the kernel's Fourier symbol"
+                              : "Gershgorin bound of the diffusion map",
+                     capped);
+        session.dt = capped;
+    } else if (st.exact) {
+        std::fprintf(stderr,
+                     "morphogen: explicit step: spectral radius of I + dt A = %.4f at dt %g "
+                     "(largest stable dt %.4g)\n",
+                     st.spectralRadius, session.dt, *st.maxStableDt);
+    }
 }
 
 std::string defaultSessionOut(const std::string& out) {
@@ -125,12 +183,10 @@ void render(const RenderFlags& f) {
     checkWritable(f.out);
     checkWritable(sessionOut);
 
-    Backend backend = makeBackend(session, parseBackendChoice(f.backend), parseContextFlag(f.context));
+    checkStability(session);
+    Backend backend = makeBackend(parseBackendChoice(f.backend), parseContextFlag(f.context));
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
     const ReactionModel& model = session.reactionModel();
-    backend.simulator->setState(
-        makeInitialState(session.init, model, session.params, session.width, session.height,
-                         session.seed));
 
     g_interrupted.store(false);
     auto previous = std::signal(SIGINT, onInterrupt);
@@ -143,17 +199,17 @@ void render(const RenderFlags& f) {
     options.chunk = std::max(50, std::min(500, int(4e7 / double(session.width * session.height))));
     RunResult result;
     try {
-        result = runSimulation(*backend.simulator, session, options);
+        result = runSession(session, backend.makeSimulator, options);
     } catch (...) {
         std::signal(SIGINT, previous);
         throw;
     }
     std::signal(SIGINT, previous);
+    session = result.completed;
 
     if (result.cancelled) {
         progress.finish("interrupted after " + std::to_string(result.stepsDone) +
                         " steps; writing what is finished");
-        session.steps = result.stepsDone;
     } else {
         progress.finish("done: " + std::to_string(result.stepsDone) + " steps");
     }
@@ -197,6 +253,8 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--param", flags->params, "override a model parameter: name=value (repeatable)");
     cmd->add_option("--edges", flags->edges, "periodic (seamless) or clamped");
     cmd->add_option("--stencil", flags->stencil, "Laplacian: 5-point or 9-point");
+    cmd->add_option("--integrator", flags->integrator, "explicit_euler or semi_implicit");
+    cmd->add_option("--sweeps", flags->sweeps, "Jacobi sweeps per semi-implicit step");
     cmd->add_option("--backend", flags->backend, "auto, gpu or cpu (default auto)");
     cmd->add_option("--context", flags->context,
                     "GL context: egl or osmesa (default: $MORPHOGEN_CONTEXT, else egl then osmesa)");

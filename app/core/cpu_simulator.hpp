@@ -19,6 +19,10 @@ public:
     State state() const override { return m_current; }
     void run(int steps) override;
 
+    // Semi-implicit runs: max over cells of |(I - dt A) c' - (c + dt f(c))|
+    // for the last step, i.e. how far the Jacobi sweeps left the solve.
+    double lastSolveResidual() const;
+
 private:
     // Steps rows [y0, y1) of in into out.
     using FusedKernel = void (*)(const StepConstants& k, const State& in, State& out, int y0,
@@ -26,6 +30,7 @@ private:
 
     void step();
     void stepGeneric();
+    void stepSemiImplicit();
     // The diffusion term of chemical c on row y, rate included.
     void diffusionRow(int c, const float* plane, int y, float* out) const;
 
@@ -34,6 +39,7 @@ private:
     StepConstants m_k;
     State m_current;
     State m_next;
+    State m_rhs; // SemiImplicit: c + dt f(c) of the step being solved
 };
 
 } // namespace morphogen

@@ -54,8 +54,12 @@ DiffusionOperator compileDiffusion(const Session& session) {
     const DiffusionSpec& spec = session.diffusion;
     DiffusionOperator op;
     op.chemicals = int(model.chemicals().size());
+    // On a coarse level (cells h times the finest) an order-n derivative
+    // shrinks by h^n: second-order terms by h^2.
+    const double spacing = session.gridSpacing;
     for (int c = 0; c < op.chemicals; ++c)
-        op.rates[std::size_t(c)] = rateOf(session, model.chemicals()[std::size_t(c)]);
+        op.rates[std::size_t(c)] =
+            float(rateOf(session, model.chemicals()[std::size_t(c)]) / (spacing * spacing));
 
     switch (spec.type) {
     case DiffusionType::Isotropic:
@@ -72,8 +76,11 @@ DiffusionOperator compileDiffusion(const Session& session) {
             const std::string& name = model.chemicals()[std::size_t(c)].name;
             auto it = spec.generalized.find(name);
             // Chemicals without a tensor sequence diffuse isotropically (set (a)).
-            const TensorSequence sequence =
+            TensorSequence sequence =
                 it == spec.generalized.end() ? tableTwoSet('a') : parseTensorSequence(it->second);
+            // rates[] already holds 1/h^2; ranks 3 and 4 need 1/h and 1/h^2 more.
+            for (std::size_t i = 0; i < sequence.values.size(); ++i)
+                sequence.values[i] /= std::pow(spacing, tensorComponents()[i].rank - 2);
             Kernel5 kernel = displayOriented(generalizedDiffusionKernel(sequence, options))
                                  .scaled(op.rates[std::size_t(c)]);
             if (spec.stabilize) {

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
 
 #include "core/simulator.hpp"
 
@@ -20,11 +21,24 @@ struct RunResult {
     int stepsDone = 0;
     bool cancelled = false;
     State state;
+    // runSession: the session that reproduces `state` (on cancel: the steps
+    // and schedule levels actually run).
+    Session completed;
 };
+
+// Makes the simulator for one level (its size, steps and grid spacing set).
+using SimulatorFactory = std::function<std::unique_ptr<Simulator>(const Session& level)>;
 
 // Runs session.steps steps on the simulator from its current state. Throws
 // BlowUpError naming the step range and a dt to try if a value leaves the
 // model's sane range.
 RunResult runSimulation(Simulator& simulator, const Session& session, const RunOptions& options);
+
+// Runs a whole session from its initial condition: one level, or its
+// coarse-to-fine schedule, each level starting from the previous one's state
+// resampled bilinearly, with diffusion scaled to the level's cell size so the
+// pattern keeps its size in the image. Progress counts steps over all levels.
+RunResult runSession(const Session& session, const SimulatorFactory& makeSimulator,
+                     const RunOptions& options);
 
 } // namespace morphogen

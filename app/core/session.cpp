@@ -17,6 +17,10 @@ namespace morphogen {
 
 using nlohmann::json;
 
+std::string toString(Integrator integrator) {
+    return integrator == Integrator::ExplicitEuler ? "explicit_euler" : "semi_implicit";
+}
+
 std::string toString(EdgeMode mode) { return mode == EdgeMode::Periodic ? "periodic" : "clamped"; }
 
 const ReactionModel& Session::reactionModel() const {
@@ -73,7 +77,8 @@ std::string paramNames(const ReactionModel& model) {
 Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
     top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
-                       "integrator", "dt", "steps", "seed", "init", "colormap"});
+                       "integrator", "jacobi_sweeps", "schedule", "dt", "steps", "seed", "init",
+                       "colormap"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");
@@ -127,12 +132,44 @@ Session sessionFromJson(const json& root, const std::string& source) {
         s.diffusion = diffusionFromJson(*diffusion, source, *model);
 
     const std::string integrator = top.string("integrator", "explicit_euler");
-    if (integrator != "explicit_euler")
-        top.failField("integrator", "is '" + integrator + "', accepted: explicit_euler");
+    if (integrator == "explicit_euler")
+        s.integrator = Integrator::ExplicitEuler;
+    else if (integrator == "semi_implicit")
+        s.integrator = Integrator::SemiImplicit;
+    else
+        top.failField("integrator",
+                      "is '" + integrator + "', accepted: explicit_euler, semi_implicit");
+    s.jacobiSweeps = int(top.integer("jacobi_sweeps", s.jacobiSweeps, 1, 1000));
 
     s.dt = float(top.number("dt", model->defaultDt(), 1e-6, 100.0));
     s.steps = int(top.integer("steps", s.steps, 0, 100000000));
     s.seed = std::uint64_t(top.integer("seed", 1, 0, (1LL << 53)));
+
+    if (const json* schedule = top.find("schedule")) {
+        if (!schedule->is_array() || schedule->empty())
+            top.failField("schedule", "must be a non-empty array of {\"size\": N or [W, H], "
+                                      "\"steps\": N}, coarsest first");
+        for (std::size_t i = 0; i < schedule->size(); ++i) {
+            FieldReader level((*schedule)[i], source, "schedule[" + std::to_string(i) + "]");
+            level.rejectUnknown({"size", "steps"});
+            ScheduleLevel l;
+            const json* size = level.find("size");
+            if (size && size->is_array() && size->size() == 2) {
+                l.width = int(level.numberValue((*size)[0], "size[0]", 1, kMaxGridSide));
+                l.height = int(level.numberValue((*size)[1], "size[1]", 1, kMaxGridSide));
+            } else {
+                l.width = l.height = int(level.integer("size", 0, 1, kMaxGridSide));
+            }
+            l.steps = int(level.integer("steps", 0, 0, 100000000));
+            s.schedule.push_back(l);
+        }
+        // The finest level is the session's grid.
+        s.width = s.schedule.back().width;
+        s.height = s.schedule.back().height;
+        s.steps = 0;
+        for (const ScheduleLevel& l : s.schedule)
+            s.steps += l.steps;
+    }
 
     // A session's "init" replaces the model's default start whole: fields it
     // leaves out are empty, not inherited.
@@ -186,7 +223,14 @@ json sessionToJson(const Session& s) {
     j["size"] = json::array({s.width, s.height});
     j["edges"] = toString(s.edges);
     j["diffusion"] = diffusionToJson(s.diffusion);
-    j["integrator"] = "explicit_euler";
+    j["integrator"] = toString(s.integrator);
+    if (s.integrator == Integrator::SemiImplicit)
+        j["jacobi_sweeps"] = s.jacobiSweeps;
+    if (!s.schedule.empty()) {
+        j["schedule"] = json::array();
+        for (const ScheduleLevel& l : s.schedule)
+            j["schedule"].push_back({{"size", {l.width, l.height}}, {"steps", l.steps}});
+    }
     j["dt"] = s.dt;
     j["steps"] = s.steps;
     j["seed"] = s.seed;

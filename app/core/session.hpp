@@ -14,6 +14,20 @@
 
 namespace morphogen {
 
+enum class Integrator {
+    ExplicitEuler, // c' = c + dt (f(c) + A c)                       (McGraw eq. 27)
+    SemiImplicit,  // (I - dt A) c' = c + dt f(c), by Jacobi sweeps   (McGraw eq. 28)
+};
+std::string toString(Integrator integrator);
+
+// One level of a coarse-to-fine schedule (Witkin-Kass 5.2; McGraw's
+// 64 -> 128 -> 256): the grid size and the steps run at it.
+struct ScheduleLevel {
+    int width = 0;
+    int height = 0;
+    int steps = 0;
+};
+
 struct ColorMapSpec {
     std::string name = "grey"; // see colormap.hpp for the list
     std::string chemical;      // empty: the model's display chemical
@@ -35,6 +49,14 @@ struct Session {
     DiffusionSpec diffusion;
     float dt = 1.0f;
     int steps = 1000;
+    Integrator integrator = Integrator::ExplicitEuler;
+    int jacobiSweeps = 8; // SemiImplicit: sweeps per step
+    // Coarse-to-fine levels, coarsest first; the last must be width x height.
+    // Empty: one level of `steps` at width x height.
+    std::vector<ScheduleLevel> schedule;
+    // Cell size relative to the finest level (h); coarse levels have h > 1 and
+    // their derivative kernels are scaled by 1/h^order. Set per level, not saved.
+    double gridSpacing = 1.0;
     std::uint64_t seed = 1;
     InitialCondition init;
     ColorMapSpec colormap;

@@ -1,5 +1,8 @@
 #include "core/simulator.hpp"
 
+#include "core/errors.hpp"
+#include "core/stability.hpp"
+
 namespace morphogen {
 
 StepConstants StepConstants::fromSession(const Session& session) {
@@ -11,6 +14,15 @@ StepConstants StepConstants::fromSession(const Session& session) {
     k.domain = session.domain();
     k.params = model.packParams(session.params);
     k.op = compileDiffusion(session);
+    k.integrator = session.integrator;
+    k.jacobiSweeps = session.jacobiSweeps;
+    if (k.integrator == Integrator::SemiImplicit) {
+        if (k.op.form == DiffusionOperator::Form::TensorMap)
+            throw InputError("the semi_implicit integrator does not support diffusion maps "
+                             "(its Jacobi sweep needs a constant kernel); use explicit_euler");
+        for (int c = 0; c < k.chemicals; ++c)
+            k.centre[std::size_t(c)] = float(operatorKernel(k.op, c).at(0, 0));
+    }
     for (int c = 0; c < 4; ++c) {
         if (c < k.chemicals) {
             const ChemicalSpec& spec = model.chemicals()[std::size_t(c)];

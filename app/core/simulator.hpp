@@ -10,9 +10,11 @@
 
 namespace morphogen {
 
-// What one explicit step needs, derived once from a session; both backends
-// read the same values so they share step semantics:
-//   c' = clamp(c + dt * (react(c) + D * lap(c)), clampMin, clampMax)
+// What one step needs, derived once from a session; both backends read the
+// same values so they share step semantics. Explicit Euler:
+//   c' = clamp(c + dt * (react(c) + A c), clampMin, clampMax)
+// Semi-implicit: Jacobi sweeps on (I - dt A) c' = c + dt react(c), starting
+// from c, clamped after every sweep.
 struct StepConstants {
     int chemicals = 0;
     float dt = 1.0f;
@@ -23,6 +25,11 @@ struct StepConstants {
     Stencil stencil = Stencil::FivePoint;
     GridDomain domain;
     DiffusionOperator op;
+    Integrator integrator = Integrator::ExplicitEuler;
+    int jacobiSweeps = 8;
+    // SemiImplicit: each chemical's kernel centre weight a0, so a Jacobi sweep is
+    //   x' = clamp((rhs + dt (A x - a0 x)) / (1 - dt a0)), rhs = c + dt f(c).
+    std::array<float, 4> centre = {};
 
     static StepConstants fromSession(const Session& session);
 };

@@ -1,8 +1,10 @@
 #include "core/stability.hpp"
 
 #include "core/diffusion_operator.hpp"
+#include "core/kernel_symbol.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <sstream>
 
@@ -15,9 +17,59 @@ float stableDiffusionDt(Stencil stencil, float maxDiffusion) {
     return 2.0f / (symbol * maxDiffusion);
 }
 
+Kernel5 operatorKernel(const DiffusionOperator& op, int chemical) {
+    const double d = op.rates[std::size_t(chemical)];
+    Kernel5 k;
+    switch (op.form) {
+    case DiffusionOperator::Form::Laplacian5:
+        k.at(1, 0) = k.at(-1, 0) = k.at(0, 1) = k.at(0, -1) = d;
+        k.at(0, 0) = -4.0 * d;
+        return k;
+    case DiffusionOperator::Form::Laplacian9:
+        k.at(1, 0) = k.at(-1, 0) = k.at(0, 1) = k.at(0, -1) = 4.0 * d / 6.0;
+        k.at(1, 1) = k.at(-1, 1) = k.at(1, -1) = k.at(-1, -1) = d / 6.0;
+        k.at(0, 0) = -20.0 * d / 6.0;
+        return k;
+    case DiffusionOperator::Form::Kernel3:
+    case DiffusionOperator::Form::Kernel5:
+        return op.kernels[std::size_t(chemical)];
+    case DiffusionOperator::Form::TensorMap:
+        break;
+    }
+    assert(false && "a diffusion map has no single kernel");
+    return k;
+}
+
+ExplicitStability explicitStability(const DiffusionOperator& op, int width, int height, double dt) {
+    ExplicitStability result;
+    if (op.form == DiffusionOperator::Form::TensorMap) {
+        const double bound = diffusionSymbolBound(op);
+        result.exact = false;
+        result.spectralRadius = std::numeric_limits<double>::quiet_NaN();
+        if (bound > 0)
+            result.maxStableDt = 2.0 / bound;
+        else
+            result.maxStableDt = std::numeric_limits<double>::infinity();
+        return result;
+    }
+    result.maxStableDt = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < op.chemicals; ++c) {
+        const ExplicitStepReport r = analyzeExplicitStep(operatorKernel(op, c), width, height, dt);
+        result.spectralRadius = std::max(result.spectralRadius, r.spectralRadius);
+        result.maxRealPart = c == 0 ? r.maxRealPart : std::max(result.maxRealPart, r.maxRealPart);
+        if (!r.maxStableDt)
+            result.maxStableDt.reset();
+        else if (result.maxStableDt)
+            result.maxStableDt = std::min(*result.maxStableDt, *r.maxStableDt);
+    }
+    return result;
+}
+
 float suggestDt(const Session& session) {
-    const double bound = diffusionSymbolBound(compileDiffusion(session));
-    const float limit = bound > 0 ? float(2.0 / bound) : std::numeric_limits<float>::infinity();
+    const ExplicitStability s =
+        explicitStability(compileDiffusion(session), session.width, session.height, session.dt);
+    const float limit =
+        s.maxStableDt ? float(*s.maxStableDt) : std::numeric_limits<float>::infinity();
     // 0.8 of the diffusion limit leaves room for the reaction term's own stiffness.
     return std::min(0.5f * session.dt, 0.8f * limit);
 }

@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 
+#include "core/diffusion_operator.hpp"
 #include "core/session.hpp"
 #include "core/state.hpp"
 
@@ -12,6 +13,22 @@ namespace morphogen {
 // stable: dt * maxD * |lambda_max| <= 2, with |lambda_max| the stencil's
 // largest symbol magnitude (8 for 5-point, 16/3 for 9-point).
 float stableDiffusionDt(Stencil stencil, float maxDiffusion);
+
+// The explicit step's stability for a compiled operator on the session's
+// grid. For homogeneous operators (Laplacians, 3x3 and 5x5 kernels) it is
+// exact: the spectral radius of I + dt A from each chemical's kernel symbol at
+// the grid's Fourier modes (periodic grid). For a diffusion map it is a
+// Gershgorin bound, so maxStableDt is conservative and spectralRadius is NaN.
+struct ExplicitStability {
+    std::optional<double> maxStableDt; // nullopt: some mode grows for every dt
+    double spectralRadius = 0;         // of I + dt A at the given dt, worst chemical
+    double maxRealPart = 0;            // of the symbol, worst chemical
+    bool exact = true;
+};
+ExplicitStability explicitStability(const DiffusionOperator& op, int width, int height, double dt);
+
+// The kernel of a homogeneous operator for one chemical (Laplacians included).
+Kernel5 operatorKernel(const DiffusionOperator& op, int chemical);
 
 // A dt to suggest after a blow-up: below the diffusion limit and below the dt
 // that failed.
