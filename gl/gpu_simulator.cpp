@@ -59,7 +59,7 @@ GpuSimulator::GpuSimulator(const Session& session)
     if (semiImplicit) {
         m_program.use();
         glUniform1i(m_program.uniform("uRhs"), 2);
-        setVec4(m_program.uniform("uCentre"), m_k.centre);
+        setVec4(m_program.uniform("uOmega"), m_k.omega);
         m_rhsProgram = buildProgram(session, "RHS_PASS");
         m_rhs = Texture2D(session.width, session.height, stateFormat(m_k.chemicals));
         m_rhsFramebuffer = Framebuffer(m_rhs);

@@ -88,15 +88,15 @@ void main() {
     outState = c + uDt * react(c);
 }
 #elif defined(JACOBI_PASS)
-// Semi-implicit, one Jacobi sweep on (I - dt A) x = rhs: uState holds the
-// current iterate, uCentre each chemical's kernel centre weight.
+// Semi-implicit, one relaxation sweep on (I - dt A) x = rhs: uState holds the
+// current iterate; uOmega is each chemical's Richardson weight, chosen from
+// the kernel's symbol (Jacobi's for the Laplacians).
 uniform sampler2D uRhs;
-uniform vec4 uCentre;
+uniform vec4 uOmega;
 void main() {
     vec2 uv = gl_FragCoord.xy * uInvSize;
     vec4 x = texture(uState, uv);
-    vec4 offDiagonal = diffusion(uv, x) - uCentre * x;
-    outState = clamp((texture(uRhs, uv) + uDt * offDiagonal) / (1.0 - uDt * uCentre), uClampMin,
+    outState = clamp(x + uOmega * (texture(uRhs, uv) - x + uDt * diffusion(uv, x)), uClampMin,
                      uClampMax);
 }
 #else

@@ -60,6 +60,69 @@ TEST(GpuCpuAgreement, EveryModelEdgeModeAndStencilAfter50Steps) {
             }
 }
 
+TEST(GpuCpuAgreement, EveryDiffusionOperatorAndIntegrator) {
+    test::glContext();
+    struct OperatorCase {
+        const char* what;
+        Session session;
+        float tolerance; // see Case::tolerance; values stay within ~[-2, 2] here
+    };
+    std::vector<OperatorCase> cases;
+    auto wk = [] {
+        Session s = test::smallSession("gs_coral", 40, 50);
+        s.model = "witkin_kass";
+        s.params = {{"k", 1.0f}, {"b", 1.0f}, {"Dp", 1.0f}, {"Dm", 1.0f}};
+        s.init = s.reactionModel().defaultInit();
+        s.dt = 0.02f;
+        s.diffusion.type = DiffusionType::Anisotropic;
+        s.diffusion.anisotropic["p"] = {30.0f, 2.0f, 1.0f};
+        s.diffusion.anisotropic["m"] = {30.0f, 2.0f, 1.5f};
+        return s;
+    };
+    cases.push_back({"anisotropic 3x3", wk(), 1e-3f});
+    Session mapped = wk();
+    mapped.diffusion.map = DiffusionMapSpec{};
+    mapped.diffusion.map->orientation.type = OrientationField::Type::Spiral;
+    mapped.diffusion.map->orientation.angle = 30.0f;
+    cases.push_back({"diffusion map", mapped, 1e-3f});
+    for (const char* set : {"c", "d"}) {
+        Session g = test::smallSession("gs_coral", 40, 50);
+        g.diffusion.type = DiffusionType::Generalized;
+        g.diffusion.generalized = {{"u", set}, {"v", set}};
+        g.dt = 0.15f;
+        cases.push_back({set[0] == 'c' ? "generalized (c)" : "generalized (d)", g, 1e-4f});
+    }
+    Session semi = test::smallSession("gs_coral", 40, 20);
+    semi.integrator = Integrator::SemiImplicit;
+    semi.dt = 3.0f;
+    cases.push_back({"semi-implicit 5-point", semi, 1e-4f});
+    Session semiGeneralized = cases[3].session;
+    semiGeneralized.integrator = Integrator::SemiImplicit;
+    semiGeneralized.dt = 1.0f;
+    semiGeneralized.steps = 20;
+    cases.push_back({"semi-implicit generalized (d)", semiGeneralized, 1e-4f});
+
+    for (OperatorCase& c : cases)
+        for (EdgeMode edges : {EdgeMode::Periodic, EdgeMode::Clamped}) {
+            Session& s = c.session;
+            s.edges = edges;
+            s.width = 48;
+            SCOPED_TRACE(std::string(c.what) + " " + toString(edges));
+            const State start = initial(s);
+            CpuSimulator cpu(s);
+            cpu.setState(start);
+            cpu.run(s.steps);
+            gl::GpuSimulator gpu(s);
+            gpu.setState(start);
+            gpu.run(s.steps);
+            const State a = cpu.state(), b = gpu.state();
+            std::printf("%s %s: moved %.3g, gpu-cpu %.3g\n", c.what, toString(edges).c_str(),
+                        test::maxAbsDifference(a, start), test::maxAbsDifference(a, b));
+            EXPECT_GT(test::maxAbsDifference(a, start), 100 * c.tolerance);
+            EXPECT_LT(test::maxAbsDifference(a, b), c.tolerance);
+        }
+}
+
 TEST(GpuCpuAgreement, UploadThenReadBackIsExact) {
     test::glContext();
     const Session s = test::smallSession("turk_irregular_spots", 17, 0);

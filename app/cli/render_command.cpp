@@ -1,4 +1,5 @@
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -135,8 +136,14 @@ Session buildSession(const RenderFlags& f) {
 // Fourier symbol; refuse an operator that grows for every dt, cap a dt above
 // the limit (saying so; the written session records the capped dt).
 void checkStability(Session& session) {
-    if (session.integrator != Integrator::ExplicitEuler)
+    if (session.integrator == Integrator::SemiImplicit) {
+        const StepConstants k = StepConstants::fromSession(session);
+        std::fprintf(stderr,
+                     "morphogen: semi-implicit step: %d relaxation sweeps, residual factor %.3g "
+                     "per sweep (%.2g per step) from the operator's symbol\n",
+                     k.jacobiSweeps, k.contraction, std::pow(k.contraction, k.jacobiSweeps));
         return;
+    }
     const ExplicitStability st =
         explicitStability(compileDiffusion(session), session.width, session.height, session.dt);
     if (!st.maxStableDt) {

@@ -381,7 +381,7 @@ void CpuSimulator::stepSemiImplicit() {
             }
         }
     }
-    // Jacobi from x0 = c: each sweep reads m_current, writes m_next.
+    // Relaxation sweeps from x0 = c: each reads m_current, writes m_next.
     for (int sweep = 0; sweep < m_k.jacobiSweeps; ++sweep) {
 #pragma omp parallel if (threaded(m_current))
         {
@@ -394,13 +394,12 @@ void CpuSimulator::stepSemiImplicit() {
                     diffusionRow(c, m_current.plane(c), y, term.data());
                     const float* rhs = m_rhs.plane(c) + std::size_t(y) * w;
                     float* out = m_next.plane(c) + std::size_t(y) * w;
-                    const float a0 = m_k.centre[std::size_t(c)];
-                    const float inverse = 1.0f / (1.0f - dt * a0);
+                    const float omega = m_k.omega[std::size_t(c)];
                     const float lo = m_k.clampMin[c], hi = m_k.clampMax[c];
 #pragma omp simd
                     for (int x = 0; x < w; ++x)
                         out[x] = std::min(
-                            std::max((rhs[x] + dt * (term[std::size_t(x)] - a0 * x0[x])) * inverse,
+                            std::max(x0[x] + omega * (rhs[x] - x0[x] + dt * term[std::size_t(x)]),
                                      lo),
                             hi);
                 }

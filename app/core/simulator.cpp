@@ -1,6 +1,7 @@
 #include "core/simulator.hpp"
 
 #include "core/errors.hpp"
+#include "core/kernel_symbol.hpp"
 #include "core/stability.hpp"
 
 namespace morphogen {
@@ -20,8 +21,17 @@ StepConstants StepConstants::fromSession(const Session& session) {
         if (k.op.form == DiffusionOperator::Form::TensorMap)
             throw InputError("the semi_implicit integrator does not support diffusion maps "
                              "(its Jacobi sweep needs a constant kernel); use explicit_euler");
-        for (int c = 0; c < k.chemicals; ++c)
-            k.centre[std::size_t(c)] = float(operatorKernel(k.op, c).at(0, 0));
+        for (int c = 0; c < k.chemicals; ++c) {
+            const Kernel5 kernel = operatorKernel(k.op, c);
+            if (analyzeExplicitStep(kernel, session.width, session.height, k.dt).maxRealPart >
+                1e-9)
+                throw InputError("the semi_implicit solve needs a diffusion operator without "
+                                 "growing modes; set \"stabilize\": true");
+            const RelaxationWeight weight =
+                relaxationWeight(kernel, session.width, session.height, k.dt);
+            k.omega[std::size_t(c)] = float(weight.omega);
+            k.contraction = std::max(k.contraction, weight.contraction);
+        }
     }
     for (int c = 0; c < 4; ++c) {
         if (c < k.chemicals) {

@@ -13,8 +13,8 @@ namespace morphogen {
 // What one step needs, derived once from a session; both backends read the
 // same values so they share step semantics. Explicit Euler:
 //   c' = clamp(c + dt * (react(c) + A c), clampMin, clampMax)
-// Semi-implicit: Jacobi sweeps on (I - dt A) c' = c + dt react(c), starting
-// from c, clamped after every sweep.
+// Semi-implicit: relaxation sweeps on (I - dt A) c' = c + dt react(c),
+// starting from c, clamped after every sweep.
 struct StepConstants {
     int chemicals = 0;
     float dt = 1.0f;
@@ -27,9 +27,10 @@ struct StepConstants {
     DiffusionOperator op;
     Integrator integrator = Integrator::ExplicitEuler;
     int jacobiSweeps = 8;
-    // SemiImplicit: each chemical's kernel centre weight a0, so a Jacobi sweep is
-    //   x' = clamp((rhs + dt (A x - a0 x)) / (1 - dt a0)), rhs = c + dt f(c).
-    std::array<float, 4> centre = {};
+    // SemiImplicit: each chemical's Richardson weight (stability.hpp); a sweep is
+    //   x' = clamp(x + omega (rhs - x + dt A x)),  rhs = c + dt f(c).
+    std::array<float, 4> omega = {};
+    double contraction = 0; // worst chemical's residual factor per sweep
 
     static StepConstants fromSession(const Session& session);
 };

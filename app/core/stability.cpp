@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cassert>
+#include <complex>
+#include <vector>
 #include <cmath>
 #include <sstream>
 
@@ -63,6 +65,45 @@ ExplicitStability explicitStability(const DiffusionOperator& op, int width, int 
             result.maxStableDt = std::min(*result.maxStableDt, *r.maxStableDt);
     }
     return result;
+}
+
+RelaxationWeight relaxationWeight(const Kernel5& kernel, int width, int height, double dt) {
+    // Every mode of a small grid; a dense 256^2 sampling (Nyquist included)
+    // of larger ones, whose symbols are smooth in between.
+    const int mw = width * height <= 65536 ? width : 256;
+    const int mh = width * height <= 65536 ? height : 256;
+    constexpr double pi = 3.14159265358979323846;
+    std::vector<std::complex<double>> mu;
+    mu.reserve(std::size_t(mw) * mh);
+    double minOmegaBound = std::numeric_limits<double>::infinity();
+    for (int n = 0; n < mh; ++n)
+        for (int m = 0; m < mw; ++m) {
+            const std::complex<double> value =
+                1.0 - dt * kernelSymbol(kernel, 2 * pi * m / mw, 2 * pi * n / mh);
+            mu.push_back(value);
+            // |1 - omega mu| < 1 needs omega < 2 Re(mu) / |mu|^2.
+            minOmegaBound = std::min(minOmegaBound, 2.0 * value.real() / std::norm(value));
+        }
+    auto contraction = [&](double omega) {
+        double worst = 0;
+        for (const std::complex<double>& value : mu)
+            worst = std::max(worst, std::abs(1.0 - omega * value));
+        return worst;
+    };
+    RelaxationWeight best{minOmegaBound / 2, contraction(minOmegaBound / 2)};
+    // The contraction is convex in omega: a golden-section search on (0, bound).
+    double lo = 0, hi = minOmegaBound;
+    for (int i = 0; i < 60; ++i) {
+        const double a = hi - 0.618 * (hi - lo), b = lo + 0.618 * (hi - lo);
+        if (contraction(a) < contraction(b))
+            hi = b;
+        else
+            lo = a;
+    }
+    const double omega = 0.5 * (lo + hi);
+    if (contraction(omega) < best.contraction)
+        best = {omega, contraction(omega)};
+    return best;
 }
 
 float suggestDt(const Session& session) {

@@ -27,6 +27,21 @@ struct ExplicitStability {
 };
 ExplicitStability explicitStability(const DiffusionOperator& op, int width, int height, double dt);
 
+// The semi-implicit solve (I - dt A) x = rhs by Richardson sweeps
+//   x' = x + omega (rhs - (I - dt A) x).
+// With omega = 1 / (1 - dt a0) this is Jacobi, which diverges for kernels
+// that are not diagonally dominant (the stabilised rank-4 sets). The
+// eigenvalues mu(k) = 1 - dt lambda(k) come from the kernel's symbol, so
+// omega is chosen to minimise the contraction max |1 - omega mu(k)| over the
+// grid's modes (for a real spectrum [mu_min, mu_max] that is
+// 2 / (mu_min + mu_max), which for the 5-point Laplacian is exactly Jacobi).
+// Requires Re lambda <= 0 (then Re mu >= 1 and some omega contracts).
+struct RelaxationWeight {
+    double omega = 1.0;
+    double contraction = 0.0; // residual factor per sweep, < 1
+};
+RelaxationWeight relaxationWeight(const Kernel5& kernel, int width, int height, double dt);
+
 // The kernel of a homogeneous operator for one chemical (Laplacians included).
 Kernel5 operatorKernel(const DiffusionOperator& op, int chemical);
 
