@@ -90,3 +90,19 @@ TEST(PatternBehaviour, PeriodicOutputTilesSeamlessly) {
     EXPECT_GT(periodic, 0.5);
     EXPECT_GT(clamped, 2.0 * periodic);
 }
+
+TEST(PatternBehaviour, FeatureCountCountsSpotsAcrossThePeriodicSeam) {
+    State st(20, 20, 1);
+    auto disc = [&](int cx, int cy) {
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+                st.at(0, (cx + dx + 20) % 20, (cy + dy + 20) % 20) = 1.0f;
+    };
+    disc(5, 5);
+    disc(12, 14);
+    disc(0, 10); // straddles the left/right seam: one spot, not two
+    EXPECT_EQ(featureCount(st, 0, true), 3);
+    EXPECT_EQ(featureCount(st, 0, false), 4);
+    st.at(0, 17, 2) = 1.0f; // a single cell is noise
+    EXPECT_EQ(featureCount(st, 0, true), 3);
+}

@@ -14,6 +14,8 @@
 #include "core/cpu_simulator.hpp"
 #include "core/errors.hpp"
 #include "core/initial_condition.hpp"
+#include "core/pattern_stats.hpp"
+#include "core/resample.hpp"
 #include "core/session.hpp"
 #include "gl/gpu_simulator.hpp"
 
@@ -28,6 +30,9 @@ struct BenchFlags {
     std::string context;
     double seconds = 1.0;
     bool noCpu = false;
+    std::string operatorSizes = "512,1024";
+    int convergenceSize = 1024;
+    bool noConvergence = false;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -48,6 +53,79 @@ double measure(Run&& run, Finish&& finish, double seconds, int batch) {
         elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     } while (elapsed < seconds);
     return steps / elapsed;
+}
+
+// The diffusion operators of issue-level interest, on the same model and grid.
+std::vector<std::pair<std::string, Session>> operatorVariants(const Session& base) {
+    std::vector<std::pair<std::string, Session>> variants;
+    variants.emplace_back("5-point", base);
+    Session anisotropic = base;
+    anisotropic.diffusion.type = DiffusionType::Anisotropic;
+    for (const ChemicalSpec& c : base.reactionModel().chemicals())
+        anisotropic.diffusion.anisotropic[c.name] = {30.0f, 1.2f, 0.8f};
+    variants.emplace_back("anisotropic 3x3", anisotropic);
+    Session generalized = base;
+    generalized.diffusion.type = DiffusionType::Generalized;
+    for (const ChemicalSpec& c : base.reactionModel().chemicals())
+        generalized.diffusion.generalized[c.name] = "c";
+    variants.emplace_back("generalized 5x5", generalized);
+    return variants;
+}
+
+struct Convergence {
+    double seconds = 0;
+    int steps = 0;
+    int features = 0;
+    bool converged = false;
+};
+
+// Runs until the feature (spot) count stops changing: within 1% over three
+// checks spaced `checkTime` simulated time units apart. Coarse levels of a
+// schedule run to convergence too, then hand over to the next size.
+Convergence timeToConverge(const Session& session, const SimulatorFactory& make,
+                           double checkTime, int maxSteps) {
+    std::vector<ScheduleLevel> levels = session.schedule;
+    if (levels.empty())
+        levels.push_back({session.width, session.height, 0});
+    const ReactionModel& model = session.reactionModel();
+    const int chemical = model.displayChemical();
+    Convergence result;
+    const auto start = Clock::now();
+    State state;
+    for (std::size_t i = 0; i < levels.size(); ++i) {
+        Session level = session;
+        level.schedule.clear();
+        level.width = levels[i].width;
+        level.height = levels[i].height;
+        level.gridSpacing = double(session.width) / level.width;
+        auto simulator = make(level);
+        state = i == 0 ? makeInitialState(level.init, model, level.params, level.width,
+                                          level.height, level.seed)
+                       : resampleBilinear(state, level.width, level.height, level.edges);
+        simulator->setState(state);
+        const int chunk = std::max(1, int(std::lround(checkTime / level.dt)));
+        std::vector<int> counts;
+        result.converged = false;
+        for (int steps = 0; steps < maxSteps; steps += chunk) {
+            simulator->run(chunk);
+            result.steps += chunk;
+            state = simulator->state();
+            counts.push_back(featureCount(state, chemical));
+            const std::size_t n = counts.size();
+            if (n >= 4 && counts[n - 1] > 0) {
+                bool steady = true;
+                for (std::size_t k = n - 3; k < n; ++k)
+                    steady = steady && std::abs(counts[k] - counts[k - 1]) <= 0.01 * counts[k];
+                if (steady) {
+                    result.converged = true;
+                    break;
+                }
+            }
+        }
+        result.features = counts.empty() ? 0 : counts.back();
+    }
+    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return result;
 }
 
 std::vector<int> parseSizes(const std::string& text) {
@@ -71,6 +149,9 @@ void bench(const BenchFlags& f) {
     const std::vector<int> sizes = parseSizes(f.sizes);
     if (!(f.seconds > 0))
         throw InputError("--seconds must be positive");
+    if (f.convergenceSize < 32 || f.convergenceSize > kMaxGridSide || f.convergenceSize % 2 != 0)
+        throw InputError("--convergence-size " + std::to_string(f.convergenceSize) +
+                         ": accepted are even sizes in 32.." + std::to_string(kMaxGridSide));
     Session base = loadPreset(f.preset);
     nlohmann::json report;
     report["preset"] = base.name;
@@ -132,6 +213,91 @@ void bench(const BenchFlags& f) {
         rows.push_back(row);
     }
     report["results"] = rows;
+
+    // Operators: the 3x3 and 5x5 passes beside the 5-point one (McGraw's GPU
+    // ran the 5x5 pass at 0.33 of the isotropic rate at 512^2).
+    std::printf("\n%-16s %-6s %14s %10s %14s %10s\n", "operator", "size", "gpu it/s",
+                "vs 5-point", "cpu it/s", "vs 5-point");
+    nlohmann::json operatorRows = nlohmann::json::array();
+    for (int n : parseSizes(f.operatorSizes)) {
+        double gpuBase = 0, cpuBase = 0;
+        for (auto& [name, variant] : operatorVariants(base)) {
+            Session s = variant;
+            s.width = s.height = n;
+            const State initial =
+                makeInitialState(s.init, s.reactionModel(), s.params, n, n, s.seed);
+            const int batch = std::max(1, int(2e6 / (double(n) * n)));
+            nlohmann::json row;
+            row["operator"] = name;
+            row["size"] = n;
+            double gpu = 0, cpu = 0;
+            if (context) {
+                std::fprintf(stderr, "bench: %dx%d gpu %s...\n", n, n, name.c_str());
+                gl::GpuSimulator sim(s);
+                sim.setState(initial);
+                gpu = measure([&](int k) { sim.run(k); }, [] { glFinish(); }, f.seconds, batch);
+                gpuBase = gpuBase > 0 ? gpuBase : gpu;
+                row["gpu_iterations_per_s"] = gpu;
+                row["gpu_over_5_point"] = gpu / gpuBase;
+            }
+            if (!f.noCpu) {
+                std::fprintf(stderr, "bench: %dx%d cpu %s...\n", n, n, name.c_str());
+                CpuSimulator sim(s);
+                sim.setState(initial);
+                cpu = measure([&](int k) { sim.run(k); }, [] {}, f.seconds, batch);
+                cpuBase = cpuBase > 0 ? cpuBase : cpu;
+                row["cpu_iterations_per_s"] = cpu;
+                row["cpu_over_5_point"] = cpu / cpuBase;
+            }
+            std::printf("%-16s %-6d %14.1f %10.3f %14.1f %10.3f\n", name.c_str(), n, gpu,
+                        gpuBase > 0 ? gpu / gpuBase : 0.0, cpu, cpuBase > 0 ? cpu / cpuBase : 0.0);
+            std::fflush(stdout);
+            operatorRows.push_back(row);
+        }
+    }
+    report["operators"] = operatorRows;
+
+    if (!f.noConvergence) {
+        // Time to a converged pattern: flat explicit, semi-implicit at 5x
+        // the explicit dt, coarse-to-fine n/2 -> n (the large spots' ~14-cell
+        // wavelength is still resolved at n/2, not at n/4); on the backend
+        // `auto` picks (the faster one on this machine).
+        const int n = f.convergenceSize;
+        Session flat = loadPreset("turk_large_spots");
+        flat.width = flat.height = n;
+        Backend backend = makeBackend(BackendChoice::Auto, parseContextFlag(f.context));
+        std::fprintf(stderr, "bench: convergence on the %s\n", backend.reason.c_str());
+        Session semi = flat;
+        semi.integrator = Integrator::SemiImplicit;
+        semi.dt = 5 * flat.dt;
+        Session coarse = flat;
+        coarse.schedule = {{n / 2, n / 2, 0}, {n, n, 0}};
+        const double checkTime = 20.0; // simulated time between feature counts
+        std::printf("\n%-26s %10s %8s %10s %10s\n", "time to converged pattern", "seconds",
+                    "steps", "features", "vs flat");
+        nlohmann::json convergenceRows = nlohmann::json::array();
+        double flatSeconds = 0;
+        for (auto& [name, s] : std::vector<std::pair<std::string, Session>>{
+                 {"flat explicit", flat}, {"semi-implicit 5x dt", semi}, {"coarse-to-fine", coarse}}) {
+            std::fprintf(stderr, "bench: %dx%d %s until the spot count settles...\n", n, n,
+                         name.c_str());
+            const Convergence c = timeToConverge(s, backend.makeSimulator, checkTime, 40000);
+            flatSeconds = flatSeconds > 0 ? flatSeconds : c.seconds;
+            std::printf("%-26s %10.2f %8d %10d %10.3f%s\n", name.c_str(), c.seconds, c.steps,
+                        c.features, c.seconds / flatSeconds, c.converged ? "" : " (not converged)");
+            std::fflush(stdout);
+            convergenceRows.push_back({{"method", name},
+                                       {"seconds", c.seconds},
+                                       {"steps", c.steps},
+                                       {"features", c.features},
+                                       {"converged", c.converged},
+                                       {"time_over_flat", c.seconds / flatSeconds}});
+        }
+        report["convergence"] = {{"preset", flat.name},
+                                 {"size", n},
+                                 {"backend", backend.reason},
+                                 {"rows", convergenceRows}};
+    }
     if (!f.json.empty()) {
         std::ofstream out(f.json);
         if (!out)
@@ -152,6 +318,11 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--context", flags->context, "GL context: egl or osmesa");
     cmd->add_option("--seconds", flags->seconds, "time per measurement (default 1)");
     cmd->add_flag("--no-cpu", flags->noCpu, "skip the CPU backend");
+    cmd->add_option("--operator-sizes", flags->operatorSizes,
+                    "sizes for the 5-point / 3x3 / 5x5 operator comparison (default 512,1024)");
+    cmd->add_option("--convergence-size", flags->convergenceSize,
+                    "grid size for time-to-converged-pattern (default 1024)");
+    cmd->add_flag("--no-convergence", flags->noConvergence, "skip time-to-converged-pattern");
     cmd->callback([flags] { bench(*flags); });
 }
 

@@ -124,4 +124,52 @@ OrientationStats orientationStats(const State& state, int chemical, int bins) {
     return stats;
 }
 
+int featureCount(const State& state, int chemical, bool periodic) {
+    const int w = state.width(), h = state.height();
+    const float* p = state.plane(chemical);
+    double mean = 0;
+    for (std::size_t i = 0; i < state.cellCount(); ++i)
+        mean += p[i];
+    mean /= double(state.cellCount());
+    std::size_t above = 0;
+    for (std::size_t i = 0; i < state.cellCount(); ++i)
+        above += p[i] > mean;
+    const bool countAbove = 2 * above <= state.cellCount();
+    auto inFeature = [&](std::size_t i) { return countAbove ? p[i] > mean : p[i] < mean; };
+    std::vector<int> label(state.cellCount(), -1);
+    std::vector<std::size_t> stack;
+    int count = 0;
+    for (std::size_t start = 0; start < state.cellCount(); ++start) {
+        if (label[start] >= 0 || !inFeature(start))
+            continue;
+        int size = 0;
+        label[start] = count;
+        stack.assign(1, start);
+        while (!stack.empty()) {
+            const std::size_t i = stack.back();
+            stack.pop_back();
+            ++size;
+            const int x = int(i % std::size_t(w)), y = int(i / std::size_t(w));
+            const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+            for (int k = 0; k < 4; ++k) {
+                int xx = nx[k], yy = ny[k];
+                if (periodic) {
+                    xx = (xx + w) % w;
+                    yy = (yy + h) % h;
+                } else if (xx < 0 || yy < 0 || xx >= w || yy >= h) {
+                    continue;
+                }
+                const std::size_t j = std::size_t(yy) * std::size_t(w) + std::size_t(xx);
+                if (label[j] < 0 && inFeature(j)) {
+                    label[j] = count;
+                    stack.push_back(j);
+                }
+            }
+        }
+        if (size >= 3)
+            ++count;
+    }
+    return count;
+}
+
 } // namespace morphogen

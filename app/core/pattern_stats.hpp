@@ -17,6 +17,12 @@ struct SpectrumStats {
 // Spectrum statistics of one chemical plane (periodic: the grid is one tile).
 SpectrumStats spectrumStats(const State& state, int chemical);
 
+// Connected regions (4-neighbour, wrapping around a periodic grid) of the
+// minority phase: cells above the chemical's mean where those are fewer than
+// half, else cells below it. Spots (light or dark) or stripe segments; tiny
+// regions (< 3 cells) are noise and are not counted.
+int featureCount(const State& state, int chemical, bool periodic = true);
+
 // How a pattern's edges are oriented: a magnitude-weighted histogram of the
 // gradient direction over [0, 180) degrees (display convention: counter-
 // clockwise from +x), and its angular Fourier moments. A stripe runs
