@@ -123,13 +123,23 @@ std::vector<float> loadLuminance(const std::string& path, int width, int height)
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
         throw InputError(path + ": image not found");
-    OIIO::ImageBuf source(path);
-    if (!source.read(0, 0, true, OIIO::TypeDesc::FLOAT))
-        throw InputError(path + ": cannot read the image (" + source.geterror() +
+    // ImageInput rather than ImageBuf(path): the latter goes through OIIO's
+    // process-wide image cache, which keeps stale entries for a file that was
+    // rewritten and crashed after reading a truncated PNG.
+    auto input = OIIO::ImageInput::open(path);
+    if (!input)
+        throw InputError(path + ": cannot read the image (" + OIIO::geterror() +
                          "); accepted: any format OpenImageIO reads, e.g. PNG, TIFF, EXR, JPEG");
-    const OIIO::ImageSpec& spec = source.spec();
+    const OIIO::ImageSpec spec = input->spec();
     if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
         throw InputError(path + ": the image is empty");
+    std::vector<float> original(std::size_t(spec.width) * spec.height * std::size_t(spec.nchannels));
+    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, original.data()))
+        throw InputError(path + ": cannot read the image's pixels (" + input->geterror() +
+                         "); is the file truncated?");
+    input->close();
+    OIIO::ImageSpec floatSpec(spec.width, spec.height, spec.nchannels, OIIO::TypeDesc::FLOAT);
+    const OIIO::ImageBuf source(floatSpec, original.data());
     OIIO::ImageBuf resized;
     const OIIO::ROI roi(0, width, 0, height, 0, 1, 0, spec.nchannels);
     if (!OIIO::ImageBufAlgo::resize(resized, source, "", 0.0f, roi))
