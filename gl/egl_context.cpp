@@ -72,7 +72,8 @@ std::vector<std::pair<std::string, EGLDisplay>> candidateDisplays() {
     auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
         eglGetProcAddress("eglGetPlatformDisplayEXT"));
     if (getPlatformDisplay && hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
-        EGLDisplay d = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        EGLDisplay d =
+            getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         if (d != EGL_NO_DISPLAY)
             displays.emplace_back("surfaceless", d);
     }
@@ -128,8 +129,8 @@ std::unique_ptr<Context> createEglContext() {
                                          EGL_NONE};
         EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttribs);
         if (context == EGL_NO_CONTEXT) {
-            failures += " [" + name + ": eglCreateContext(3.3 core): " +
-                        eglErrorName(eglGetError()) + "]";
+            failures +=
+                " [" + name + ": eglCreateContext(3.3 core): " + eglErrorName(eglGetError()) + "]";
             continue;
         }
         auto result = std::make_unique<EglContext>(display, context);

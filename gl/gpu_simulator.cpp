@@ -9,7 +9,9 @@ namespace {
 
 // GLSL clamp() with infinite bounds is fine in practice, but finite bounds
 // avoid relying on drivers passing infinities through uniforms.
-float finite(float v) { return std::isinf(v) ? std::copysign(FLT_MAX, v) : v; }
+float finite(float v) {
+    return std::isinf(v) ? std::copysign(FLT_MAX, v) : v;
+}
 
 void setVec4(GLint location, const std::array<float, 4>& v) {
     glUniform4f(location, finite(v[0]), finite(v[1]), finite(v[2]), finite(v[3]));
@@ -26,7 +28,9 @@ std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model) {
             embeddedShader("glsl/step.frag")};
 }
 
-GLenum stateFormat(int chemicals) { return chemicals <= 2 ? GL_RG32F : GL_RGBA32F; }
+GLenum stateFormat(int chemicals) {
+    return chemicals <= 2 ? GL_RG32F : GL_RGBA32F;
+}
 
 PingPong::PingPong(int width, int height, GLenum internalFormat, GLenum wrap) {
     for (std::size_t i = 0; i < 2; ++i) {
@@ -137,7 +141,9 @@ void GpuSimulator::bindAuxiliaryTextures() const {
         m_rhs.bind(2);
 }
 
-void GpuSimulator::setState(const State& state) { m_pingPong.current().uploadRgba(state.toRgba()); }
+void GpuSimulator::setState(const State& state) {
+    m_pingPong.current().uploadRgba(state.toRgba());
+}
 
 State GpuSimulator::state() const {
     return State::fromRgba(m_pingPong.current().downloadRgba(), m_k.domain.width(),
@@ -164,8 +170,8 @@ void GpuSimulator::run(int steps) {
 
 CopyPass::CopyPass(int width, int height, GLenum internalFormat)
     : m_pingPong(width, height, internalFormat, GL_REPEAT) {
-    m_program = Program({embeddedShader("glsl/fullscreen.vert")},
-                        {embeddedShader("glsl/copy.frag")}, {});
+    m_program =
+        Program({embeddedShader("glsl/fullscreen.vert")}, {embeddedShader("glsl/copy.frag")}, {});
     m_program.use();
     glUniform1i(m_program.uniform("uState"), 0);
     glUniform2f(m_program.uniform("uInvSize"), 1.0f / float(width), 1.0f / float(height));

@@ -76,11 +76,13 @@ Framebuffer::Framebuffer(const Texture2D& colour)
     if (status != GL_FRAMEBUFFER_COMPLETE)
         throw std::runtime_error("framebuffer with a " + std::to_string(colour.width()) + "x" +
                                  std::to_string(colour.height()) +
-                                 " texture is incomplete (status 0x" + [&] {
+                                 " texture is incomplete (status 0x" +
+                                 [&] {
                                      char buf[16];
                                      std::snprintf(buf, sizeof buf, "%x", status);
                                      return std::string(buf);
-                                 }() + ")");
+                                 }() +
+                                 ")");
 }
 
 void Framebuffer::bind() const {

@@ -71,7 +71,8 @@ TEST(AnisotropicDiffusion, APointSpreadsAlongTheta) {
         EXPECT_LT(error, 1.0) << "principal axis " << axis;
         // Variance along theta grows at 2 * a1^2 * t, across at 2 * a2^2 * t.
         const double t = 100 * s.dt;
-        const double c = std::cos(theta * 3.14159265358979 / 180), sn = std::sin(theta * 3.14159265358979 / 180);
+        const double c = std::cos(theta * 3.14159265358979 / 180),
+                     sn = std::sin(theta * 3.14159265358979 / 180);
         const double along = (m.xx * c * c + 2 * m.xy * c * sn + m.yy * sn * sn) / m.mass;
         const double across = (m.xx * sn * sn - 2 * m.xy * c * sn + m.yy * c * c) / m.mass;
         EXPECT_NEAR(along, 2 * 4.0 * t, 0.05 * 2 * 4.0 * t);
@@ -104,8 +105,7 @@ TEST(AnisotropicDiffusion, DiffusionMapConservesMassOnAPeriodicGrid) {
             after += sim.state().plane(0)[i];
         // The field really moved (noise smoothed), and the sum did not.
         EXPECT_LT(spectrumStats(sim.state(), 0).variance, 0.5 * spectrumStats(st, 0).variance);
-        std::printf("%s map: sum before %.6f, after %.6f\n", toString(type).c_str(), before,
-                    after);
+        std::printf("%s map: sum before %.6f, after %.6f\n", toString(type).c_str(), before, after);
         // Float round-off only: 200 steps of ~10 additions per cell.
         EXPECT_NEAR(after, before, 1e-3);
     }
@@ -140,8 +140,9 @@ TEST(SemiImplicit, StepsBeyondTheExplicitLimitMakeTheSamePattern) {
     implicitRun.steps = int(std::lround(4000 * 0.9 / implicitRun.dt));
     const SpectrumStats e = spectrumStats(test::runCpu(explicitRun), 1);
     const SpectrumStats i = spectrumStats(test::runCpu(implicitRun), 1);
-    std::printf("explicit: wavelength %.2f var %.3g; semi-implicit dt %.2f: wavelength %.2f var %.3g\n",
-                e.dominantWavelength, e.variance, implicitRun.dt, i.dominantWavelength, i.variance);
+    std::printf(
+        "explicit: wavelength %.2f var %.3g; semi-implicit dt %.2f: wavelength %.2f var %.3g\n",
+        e.dominantWavelength, e.variance, implicitRun.dt, i.dominantWavelength, i.variance);
     EXPECT_GT(i.variance, 0.5 * e.variance);
     EXPECT_NEAR(i.dominantWavelength, e.dominantWavelength, 0.25 * e.dominantWavelength);
     EXPECT_LT(i.nyquistFraction, 0.05);

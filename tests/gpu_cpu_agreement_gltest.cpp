@@ -33,7 +33,8 @@ State initial(const Session& s) {
 
 TEST(GpuCpuAgreement, EveryModelEdgeModeAndStencilAfter50Steps) {
     test::glContext();
-    const Case cases[] = {{"gs_coral", 1e-4f}, {"turk_small_spots", 1e-3f}, {"mcgraw_turing", 1e-3f}};
+    const Case cases[] = {
+        {"gs_coral", 1e-4f}, {"turk_small_spots", 1e-3f}, {"mcgraw_turing", 1e-3f}};
     for (const Case& c : cases)
         for (EdgeMode edges : {EdgeMode::Periodic, EdgeMode::Clamped})
             for (Stencil stencil : {Stencil::FivePoint, Stencil::NinePoint}) {

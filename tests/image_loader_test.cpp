@@ -51,8 +51,8 @@ TEST(ImageLoader, ReadsAndResamplesLuminance) {
     const std::vector<float> lum = loadLuminance(path, 64, 32);
     ASSERT_EQ(lum.size(), 64u * 32u);
     // 16-bit quantisation: half a step.
-    EXPECT_NEAR(lum[2], 1.0f, 1e-4f);  // sin peak at x = 2
-    EXPECT_NEAR(lum[6], 0.0f, 1e-4f);  // trough at x = 6
+    EXPECT_NEAR(lum[2], 1.0f, 1e-4f);            // sin peak at x = 2
+    EXPECT_NEAR(lum[6], 0.0f, 1e-4f);            // trough at x = 6
     EXPECT_NEAR(lum[2], lum[5 * 64 + 2], 1e-6f); // constant down a column
     const std::vector<float> half = loadLuminance(path, 32, 16);
     EXPECT_EQ(half.size(), 32u * 16u);

@@ -27,9 +27,8 @@ struct Measured {
 
 Measured measure(const Session& session) {
     const State state = test::runCpu(session);
-    const int chemical = session.reactionModel().chemicalIndex(session.colormap.chemical.empty()
-                                                                   ? std::string("v")
-                                                                   : session.colormap.chemical);
+    const int chemical = session.reactionModel().chemicalIndex(
+        session.colormap.chemical.empty() ? std::string("v") : session.colormap.chemical);
     Measured m;
     m.orientation = orientationStats(state, chemical);
     m.spectrum = spectrumStats(state, chemical);
@@ -115,10 +114,10 @@ TEST(OrientationBehaviour, ZebraStripesRunAlongTheta) {
 
 TEST(OrientationBehaviour, NewPresetsLoadAndRunBriefly) {
     const char* names[] = {
-        "wk_zebra",          "wk_sand_ripples",    "wk_radial_stripes",  "wk_spiral_stripes",
-        "mcgraw_turing_a",   "mcgraw_turing_b",    "mcgraw_turing_c",    "mcgraw_turing_d",
-        "mcgraw_turing_e",   "mcgraw_turing_f",    "gs_generalized_a",   "gs_generalized_b",
-        "gs_generalized_c",  "gs_generalized_d",   "gs_generalized_e",   "gs_generalized_f"};
+        "wk_zebra",         "wk_sand_ripples",  "wk_radial_stripes", "wk_spiral_stripes",
+        "mcgraw_turing_a",  "mcgraw_turing_b",  "mcgraw_turing_c",   "mcgraw_turing_d",
+        "mcgraw_turing_e",  "mcgraw_turing_f",  "gs_generalized_a",  "gs_generalized_b",
+        "gs_generalized_c", "gs_generalized_d", "gs_generalized_e",  "gs_generalized_f"};
     for (const char* name : names) {
         SCOPED_TRACE(name);
         Session s;
@@ -139,4 +138,3 @@ TEST(OrientationBehaviour, NewPresetsLoadAndRunBriefly) {
         }
     }
 }
-

@@ -82,8 +82,8 @@ struct Convergence {
 // Runs until the feature (spot) count stops changing: within 1% over three
 // checks spaced `checkTime` simulated time units apart. Coarse levels of a
 // schedule run to convergence too, then hand over to the next size.
-Convergence timeToConverge(const Session& session, const SimulatorFactory& make,
-                           double checkTime, int maxSteps) {
+Convergence timeToConverge(const Session& session, const SimulatorFactory& make, double checkTime,
+                           int maxSteps) {
     std::vector<ScheduleLevel> levels = session.schedule;
     if (levels.empty())
         levels.push_back({session.width, session.height, 0});
@@ -178,8 +178,7 @@ void bench(const BenchFlags& f) {
         Session s = base;
         s.width = s.height = n;
         const double cells = double(n) * n;
-        const State initial =
-            makeInitialState(s.init, s.reactionModel(), s.params, n, n, s.seed);
+        const State initial = makeInitialState(s.init, s.reactionModel(), s.params, n, n, s.seed);
         const int batch = std::max(1, int(2e6 / cells));
         nlohmann::json row;
         row["size"] = n;
@@ -216,8 +215,8 @@ void bench(const BenchFlags& f) {
 
     // Operators: the 3x3 and 5x5 passes beside the 5-point one (McGraw's GPU
     // ran the 5x5 pass at 0.33 of the isotropic rate at 512^2).
-    std::printf("\n%-16s %-6s %14s %10s %14s %10s\n", "operator", "size", "gpu it/s",
-                "vs 5-point", "cpu it/s", "vs 5-point");
+    std::printf("\n%-16s %-6s %14s %10s %14s %10s\n", "operator", "size", "gpu it/s", "vs 5-point",
+                "cpu it/s", "vs 5-point");
     nlohmann::json operatorRows = nlohmann::json::array();
     for (int n : parseSizes(f.operatorSizes)) {
         double gpuBase = 0, cpuBase = 0;
@@ -273,12 +272,14 @@ void bench(const BenchFlags& f) {
         Session coarse = flat;
         coarse.schedule = {{n / 2, n / 2, 0}, {n, n, 0}};
         const double checkTime = 20.0; // simulated time between feature counts
-        std::printf("\n%-26s %10s %8s %10s %10s\n", "time to converged pattern", "seconds",
-                    "steps", "features", "vs flat");
+        std::printf("\n%-26s %10s %8s %10s %10s\n", "time to converged pattern", "seconds", "steps",
+                    "features", "vs flat");
         nlohmann::json convergenceRows = nlohmann::json::array();
         double flatSeconds = 0;
-        for (auto& [name, s] : std::vector<std::pair<std::string, Session>>{
-                 {"flat explicit", flat}, {"semi-implicit 5x dt", semi}, {"coarse-to-fine", coarse}}) {
+        for (auto& [name, s] :
+             std::vector<std::pair<std::string, Session>>{{"flat explicit", flat},
+                                                          {"semi-implicit 5x dt", semi},
+                                                          {"coarse-to-fine", coarse}}) {
             std::fprintf(stderr, "bench: %dx%d %s until the spot count settles...\n", n, n,
                          name.c_str());
             const Convergence c = timeToConverge(s, backend.makeSimulator, checkTime, 40000);
@@ -311,7 +312,8 @@ void bench(const BenchFlags& f) {
 void addBenchCommand(CLI::App& app) {
     auto flags = std::make_shared<BenchFlags>();
     CLI::App* cmd = app.add_subcommand(
-        "bench", "Measure step throughput: GPU step vs a same-format copy pass, and the CPU backend");
+        "bench",
+        "Measure step throughput: GPU step vs a same-format copy pass, and the CPU backend");
     cmd->add_option("--json", flags->json, "also write the results as JSON to this file");
     cmd->add_option("--sizes", flags->sizes, "comma-separated grid sizes (default 256,512,1024)");
     cmd->add_option("--preset", flags->preset, "preset whose model is measured (default gs_coral)");

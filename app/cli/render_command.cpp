@@ -120,7 +120,8 @@ Session buildSession(const RenderFlags& f) {
         else if (f.stencil == "9-point" || f.stencil == "9")
             s.diffusion.stencil = Stencil::NinePoint;
         else
-            throw InputError("--stencil '" + f.stencil + "' is unknown (accepted: 5-point, 9-point)");
+            throw InputError("--stencil '" + f.stencil +
+                             "' is unknown (accepted: 5-point, 9-point)");
     }
     if (!f.colormap.empty())
         s.colormap.name = f.colormap;
@@ -182,7 +183,8 @@ void render(const RenderFlags& f) {
     Session session = buildSession(f);
     const ImageFormat format = imageFormatForPath(f.out);
     if (f.bitDepth != 8 && f.bitDepth != 16)
-        throw InputError("--bit-depth " + std::to_string(f.bitDepth) + " is not supported (accepted: 8, 16)");
+        throw InputError("--bit-depth " + std::to_string(f.bitDepth) +
+                         " is not supported (accepted: 8, 16)");
     const std::string sessionOut = f.sessionOut.empty() ? defaultSessionOut(f.out) : f.sessionOut;
     if (sessionOut == f.out)
         throw InputError("--session-out must differ from --out");
@@ -228,8 +230,8 @@ void render(const RenderFlags& f) {
         writeRawImage(f.out, result.state, names);
     } else {
         const int chemical = colormapChemical(session.colormap, model);
-        writeRgbImage(f.out, applyColormap(result.state, chemical, session.colormap),
-                      session.width, session.height, f.bitDepth);
+        writeRgbImage(f.out, applyColormap(result.state, chemical, session.colormap), session.width,
+                      session.height, f.bitDepth);
     }
     saveSessionFile(session, sessionOut);
     std::printf("%s\n%s\n", f.out.c_str(), sessionOut.c_str());
@@ -257,14 +259,16 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--steps", flags->steps, "number of steps");
     cmd->add_option("--seed", flags->seed, "random seed of the initial condition");
     cmd->add_option("--dt", flags->dt, "time step");
-    cmd->add_option("--param", flags->params, "override a model parameter: name=value (repeatable)");
+    cmd->add_option("--param", flags->params,
+                    "override a model parameter: name=value (repeatable)");
     cmd->add_option("--edges", flags->edges, "periodic (seamless) or clamped");
     cmd->add_option("--stencil", flags->stencil, "Laplacian: 5-point or 9-point");
     cmd->add_option("--integrator", flags->integrator, "explicit_euler or semi_implicit");
     cmd->add_option("--sweeps", flags->sweeps, "Jacobi sweeps per semi-implicit step");
     cmd->add_option("--backend", flags->backend, "auto, gpu or cpu (default auto)");
-    cmd->add_option("--context", flags->context,
-                    "GL context: egl or osmesa (default: $MORPHOGEN_CONTEXT, else egl then osmesa)");
+    cmd->add_option(
+        "--context", flags->context,
+        "GL context: egl or osmesa (default: $MORPHOGEN_CONTEXT, else egl then osmesa)");
     cmd->add_option("--colormap", flags->colormap,
                     "grey, two-colour, viridis, magma, inferno, coolwarm");
     cmd->add_option("--chemical", flags->chemical, "chemical to show (default: the model's)");

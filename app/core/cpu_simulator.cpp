@@ -151,8 +151,12 @@ FusedKernel fusedKernelFor(const ReactionModel& model, const StepConstants& k) {
 class FlushDenormals {
 public:
 #if defined(__SSE2__)
-    FlushDenormals() : m_saved(_mm_getcsr()) { _mm_setcsr(m_saved | 0x8040u); }
-    ~FlushDenormals() { _mm_setcsr(m_saved); }
+    FlushDenormals() : m_saved(_mm_getcsr()) {
+        _mm_setcsr(m_saved | 0x8040u);
+    }
+    ~FlushDenormals() {
+        _mm_setcsr(m_saved);
+    }
 
 private:
     unsigned m_saved;
@@ -234,8 +238,10 @@ void tensorMapRow(const DiffusionOperator& op, int c, const float* plane, int w,
         const float cc = plane[ic], l = plane[il], r = plane[ir], d = plane[id], u = plane[iu];
         const float ru = plane[index(x + 1, y + 1)], rd = plane[index(x + 1, y - 1)];
         const float lu = plane[index(x - 1, y + 1)], ld = plane[index(x - 1, y - 1)];
-        const float xx = 0.5f * (axx(ic) + axx(ir)) * (r - cc) - 0.5f * (axx(ic) + axx(il)) * (cc - l);
-        const float yy = 0.5f * (ayy(ic) + ayy(iu)) * (u - cc) - 0.5f * (ayy(ic) + ayy(id)) * (cc - d);
+        const float xx =
+            0.5f * (axx(ic) + axx(ir)) * (r - cc) - 0.5f * (axx(ic) + axx(il)) * (cc - l);
+        const float yy =
+            0.5f * (ayy(ic) + ayy(iu)) * (u - cc) - 0.5f * (ayy(ic) + ayy(id)) * (cc - d);
         const float xy = 0.25f * (axy(ir) * (ru - rd) - axy(il) * (lu - ld)) +
                          0.25f * (axy(iu) * (ru - lu) - axy(id) * (rd - ld));
         out[x] = xx + yy + xy;
@@ -420,8 +426,9 @@ double CpuSimulator::lastSolveResidual() const {
             const float* x = m_current.plane(c) + std::size_t(y) * w;
             const float* rhs = m_rhs.plane(c) + std::size_t(y) * w;
             for (int i = 0; i < w; ++i)
-                worst = std::max(worst, std::fabs(double(x[i]) - m_k.dt * double(term[std::size_t(i)]) -
-                                                  double(rhs[i])));
+                worst =
+                    std::max(worst, std::fabs(double(x[i]) - m_k.dt * double(term[std::size_t(i)]) -
+                                              double(rhs[i])));
         }
     return worst;
 }

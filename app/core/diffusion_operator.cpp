@@ -5,8 +5,8 @@
 
 #include "core/errors.hpp"
 #include "core/image_io.hpp"
-#include "core/orientation_field.hpp"
 #include "core/kernel_symbol.hpp"
+#include "core/orientation_field.hpp"
 #include "core/session.hpp"
 #include "core/tensor_sequence.hpp"
 

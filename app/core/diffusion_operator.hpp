@@ -23,7 +23,7 @@ struct DiffusionOperator {
     };
     Form form = Form::Laplacian5;
     int chemicals = 0;
-    std::array<float, 4> rates = {};    // Laplacian5/9: each chemical's rate
+    std::array<float, 4> rates = {};     // Laplacian5/9: each chemical's rate
     std::array<Kernel5, 4> kernels = {}; // Kernel3/5: each chemical's kernel, rate included
 
     // TensorMap. Per texel: (s, s cos 2theta, s sin 2theta) of the map. Per

@@ -28,9 +28,12 @@ std::string toString(DiffusionType type) {
 namespace {
 
 const std::pair<OrientationField::Type, const char*> kFieldNames[] = {
-    {OrientationField::Type::Constant, "constant"},  {OrientationField::Type::Radial, "radial"},
-    {OrientationField::Type::Concentric, "concentric"}, {OrientationField::Type::Spiral, "spiral"},
-    {OrientationField::Type::Vortex, "vortex"},      {OrientationField::Type::Blend, "blend"},
+    {OrientationField::Type::Constant, "constant"},
+    {OrientationField::Type::Radial, "radial"},
+    {OrientationField::Type::Concentric, "concentric"},
+    {OrientationField::Type::Spiral, "spiral"},
+    {OrientationField::Type::Vortex, "vortex"},
+    {OrientationField::Type::Blend, "blend"},
     {OrientationField::Type::ImageGradient, "image_gradient"}};
 
 std::string chemicalList(const ReactionModel& model) {
@@ -122,7 +125,8 @@ DiffusionSpec diffusionFromJson(const json& j, const std::string& source,
     else if (type == "generalized")
         spec.type = DiffusionType::Generalized;
     else
-        reader.failField("type", "is '" + type + "', accepted: isotropic, anisotropic, generalized");
+        reader.failField("type",
+                         "is '" + type + "', accepted: isotropic, anisotropic, generalized");
 
     const std::string stencil = reader.string("stencil", "5-point");
     if (stencil == "5-point")

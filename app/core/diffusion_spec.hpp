@@ -38,10 +38,10 @@ struct AnisotropicTensor {
 struct OrientationField {
     enum class Type { Constant, Radial, Concentric, Spiral, Vortex, Blend, ImageGradient };
     Type type = Type::Constant;
-    float angle = 0.0f;                  // Constant: the angle; Spiral/Vortex: the twist (degrees)
+    float angle = 0.0f;                   // Constant: the angle; Spiral/Vortex: the twist (degrees)
     float centreX = 0.5f, centreY = 0.5f; // Radial..Vortex: centre as a fraction of the grid
-    std::vector<OrientationField> parts; // Blend: fields merged by inverse-distance weights
-    std::string image;                   // ImageGradient: the image file
+    std::vector<OrientationField> parts;  // Blend: fields merged by inverse-distance weights
+    std::string image;                    // ImageGradient: the image file
 };
 std::string toString(OrientationField::Type type);
 
@@ -63,12 +63,13 @@ struct SavitzkyGolaySpec {
 
 struct DiffusionSpec {
     DiffusionType type = DiffusionType::Isotropic;
-    Stencil stencil = Stencil::FivePoint;                  // Isotropic
-    std::map<std::string, AnisotropicTensor> anisotropic;  // Anisotropic, by chemical
-    std::map<std::string, std::string> generalized;        // Generalized: "a".."f" or "xx=1,..."
-    SavitzkyGolaySpec savitzkyGolay;                       // Generalized
-    bool stabilize = true; // Generalized: damp modes whose symbol has Re > 0 (see kernel_symbol.hpp)
-    std::optional<DiffusionMapSpec> map;                   // Anisotropic only
+    Stencil stencil = Stencil::FivePoint;                 // Isotropic
+    std::map<std::string, AnisotropicTensor> anisotropic; // Anisotropic, by chemical
+    std::map<std::string, std::string> generalized;       // Generalized: "a".."f" or "xx=1,..."
+    SavitzkyGolaySpec savitzkyGolay;                      // Generalized
+    bool stabilize =
+        true; // Generalized: damp modes whose symbol has Re > 0 (see kernel_symbol.hpp)
+    std::optional<DiffusionMapSpec> map; // Anisotropic only
 };
 
 // Reads "diffusion" of a session; errors name `source` and the field.

@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 
 ImageFormat imageFormatForPath(const std::string& path) {
     std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     if (ext == ".png")
         return ImageFormat::Png;
     if (ext == ".tif" || ext == ".tiff")
@@ -81,7 +82,8 @@ void writeRgbImage(const std::string& path, const std::vector<float>& rgb, int w
         return;
     }
     if (bitDepth != 8 && bitDepth != 16)
-        throw InputError("bit depth " + std::to_string(bitDepth) + " is not supported (accepted: 8, 16)");
+        throw InputError("bit depth " + std::to_string(bitDepth) +
+                         " is not supported (accepted: 8, 16)");
     if (bitDepth == 8) {
         std::vector<unsigned char> px(rgb.size());
         for (std::size_t i = 0; i < rgb.size(); ++i)
@@ -133,7 +135,8 @@ std::vector<float> loadLuminance(const std::string& path, int width, int height)
     const OIIO::ImageSpec spec = input->spec();
     if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
         throw InputError(path + ": the image is empty");
-    std::vector<float> original(std::size_t(spec.width) * spec.height * std::size_t(spec.nchannels));
+    std::vector<float> original(std::size_t(spec.width) * spec.height *
+                                std::size_t(spec.nchannels));
     if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, original.data()))
         throw InputError(path + ": cannot read the image's pixels (" + input->geterror() +
                          "); is the file truncated?");

@@ -35,7 +35,8 @@ State makeInitialState(const InitialCondition& init, const ReactionModel& model,
     // Which cells take the `inside` values.
     std::vector<unsigned char> marked(state.cellCount(), 0);
     if (init.type == InitialCondition::Type::CentreSquare) {
-        const int side = std::max(1, int(std::lround(init.squareFraction * std::min(width, height))));
+        const int side =
+            std::max(1, int(std::lround(init.squareFraction * std::min(width, height))));
         const int x0 = (width - side) / 2, y0 = (height - side) / 2;
         for (int y = y0; y < y0 + side; ++y)
             for (int x = x0; x < x0 + side; ++x)
@@ -67,8 +68,9 @@ State makeInitialState(const InitialCondition& init, const ReactionModel& model,
         float* plane = state.plane(c);
         for (std::size_t i = 0; i < state.cellCount(); ++i) {
             const float value = marked[i] ? inside : base;
-            plane[i] = noise == 0.0f ? value
-                                     : float(value + noise * uniformSigned(seed, std::uint64_t(c), i));
+            plane[i] = noise == 0.0f
+                           ? value
+                           : float(value + noise * uniformSigned(seed, std::uint64_t(c), i));
         }
     }
     model.prepareState(state, params, seed);

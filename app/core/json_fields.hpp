@@ -13,7 +13,9 @@
 
 namespace morphogen {
 
-inline std::string typeName(const nlohmann::json& j) { return j.type_name(); }
+inline std::string typeName(const nlohmann::json& j) {
+    return j.type_name();
+}
 
 // Reads fields of one JSON object and reports problems as "source: field 'a.b' ...".
 class FieldReader {
@@ -69,7 +71,8 @@ public:
         return numberValue(*j, key, min, max);
     }
 
-    double numberValue(const nlohmann::json& j, const std::string& key, double min, double max) const {
+    double numberValue(const nlohmann::json& j, const std::string& key, double min,
+                       double max) const {
         if (!j.is_number())
             failField(key, "must be a number, got " + typeName(j));
         const double v = j.get<double>();
@@ -88,8 +91,8 @@ public:
             return fallback;
         if (!j->is_number_integer())
             failField(key, "must be an integer, got " + typeName(*j));
-        const long long v = j->is_number_unsigned() ? (long long)j->get<unsigned long long>()
-                                                    : j->get<long long>();
+        const long long v =
+            j->is_number_unsigned() ? (long long)j->get<unsigned long long>() : j->get<long long>();
         if (v < min || v > max)
             failField(key, "is " + std::to_string(v) + ", accepted range is [" +
                                std::to_string(min) + ", " + std::to_string(max) + "]");

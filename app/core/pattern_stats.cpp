@@ -84,9 +84,7 @@ double OrientationStats::momentPhaseDegrees(int k) const {
 OrientationStats orientationStats(const State& state, int chemical, int bins) {
     constexpr double pi = 3.14159265358979323846;
     const int w = state.width(), h = state.height();
-    auto at = [&](int x, int y) {
-        return double(state.at(chemical, (x + w) % w, (y + h) % h));
-    };
+    auto at = [&](int x, int y) { return double(state.at(chemical, (x + w) % w, (y + h) % h)); };
     OrientationStats stats;
     stats.histogram.assign(std::size_t(bins), 0.0);
     stats.re.assign(13, 0.0);

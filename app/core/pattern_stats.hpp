@@ -10,7 +10,7 @@ namespace morphogen {
 // pixels (RD amplifies differences, so pixels diverge between backends).
 struct SpectrumStats {
     double dominantWavelength = 0; // cells, from the radially averaged power spectrum peak
-    double nyquistFraction = 0;    // share of (non-DC) power in the outer band |k| > 0.4 (cycles/cell)
+    double nyquistFraction = 0; // share of (non-DC) power in the outer band |k| > 0.4 (cycles/cell)
     double variance = 0;
 };
 

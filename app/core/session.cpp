@@ -21,7 +21,9 @@ std::string toString(Integrator integrator) {
     return integrator == Integrator::ExplicitEuler ? "explicit_euler" : "semi_implicit";
 }
 
-std::string toString(EdgeMode mode) { return mode == EdgeMode::Periodic ? "periodic" : "clamped"; }
+std::string toString(EdgeMode mode) {
+    return mode == EdgeMode::Periodic ? "periodic" : "clamped";
+}
 
 const ReactionModel& Session::reactionModel() const {
     const ReactionModel* m = findModel(model);
@@ -115,8 +117,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
             if (!(*size)[0].is_number_integer() || !(*size)[1].is_number_integer())
                 top.failField("size", "must hold integers");
         } else {
-            top.failField("size", "must be an integer N or an array [W, H], got " +
-                                      size->dump());
+            top.failField("size", "must be an integer N or an array [W, H], got " + size->dump());
         }
     }
 
@@ -186,7 +187,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
         else if (type == "seed_spots")
             s.init.type = InitialCondition::Type::SeedSpots;
         else
-            reader.failField("type", "is '" + type + "', accepted: noise, centre_square, seed_spots");
+            reader.failField("type",
+                             "is '" + type + "', accepted: noise, centre_square, seed_spots");
         if (reader.find("base"))
             s.init.base = chemicalValues(reader, "base", *model);
         if (reader.find("noise"))
@@ -353,8 +355,8 @@ void validateSession(const Session& s, const std::string& source) {
             throw InputError(source + ": parameter '" + p.name + "' is missing");
         if (!std::isfinite(it->second) || it->second < p.min || it->second > p.max) {
             std::ostringstream os;
-            os << source << ": parameter " << p.name << " = " << it->second
-               << " is outside [" << p.min << ", " << p.max << "]";
+            os << source << ": parameter " << p.name << " = " << it->second << " is outside ["
+               << p.min << ", " << p.max << "]";
             throw InputError(os.str());
         }
     }

@@ -23,8 +23,7 @@ StepConstants StepConstants::fromSession(const Session& session) {
                              "(its Jacobi sweep needs a constant kernel); use explicit_euler");
         for (int c = 0; c < k.chemicals; ++c) {
             const Kernel5 kernel = operatorKernel(k.op, c);
-            if (analyzeExplicitStep(kernel, session.width, session.height, k.dt).maxRealPart >
-                1e-9)
+            if (analyzeExplicitStep(kernel, session.width, session.height, k.dt).maxRealPart > 1e-9)
                 throw InputError("the semi_implicit solve needs a diffusion operator without "
                                  "growing modes; set \"stabilize\": true");
             const RelaxationWeight weight =
@@ -36,8 +35,8 @@ StepConstants StepConstants::fromSession(const Session& session) {
     for (int c = 0; c < 4; ++c) {
         if (c < k.chemicals) {
             const ChemicalSpec& spec = model.chemicals()[std::size_t(c)];
-            k.diffusion[c] = spec.diffusionParam.empty() ? 0.0f
-                                                         : session.params.at(spec.diffusionParam);
+            k.diffusion[c] =
+                spec.diffusionParam.empty() ? 0.0f : session.params.at(spec.diffusionParam);
             k.clampMin[c] = spec.clampMin;
             k.clampMax[c] = spec.clampMax;
         } else {

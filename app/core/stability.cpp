@@ -5,10 +5,10 @@
 
 #include <algorithm>
 #include <cassert>
-#include <complex>
-#include <vector>
 #include <cmath>
+#include <complex>
 #include <sstream>
+#include <vector>
 
 namespace morphogen {
 

@@ -20,6 +20,8 @@ WitkinKassModel::WitkinKassModel() {
     m_defaultInit.noise = {{"p", 1.0f}, {"m", 1.0f}};
 }
 
-void WitkinKassModel::react(const RowView& row, const float* p) const { reactRow<Cell>(row, p); }
+void WitkinKassModel::react(const RowView& row, const float* p) const {
+    reactRow<Cell>(row, p);
+}
 
 } // namespace morphogen
