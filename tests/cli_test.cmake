@@ -88,6 +88,23 @@ foreach(backend cpu gpu)
   endif()
 endforeach()
 
+# Coarse-to-fine from the command line; the written session holds the schedule and reproduces it.
+run(0 "" render --preset gs_coral --schedule 24:40,48:20 --backend cpu --out c2f.png)
+file(READ "${WORK}/c2f.json" c2f)
+string(FIND "${c2f}" "\"schedule\"" at)
+if(at EQUAL -1)
+  message(SEND_ERROR "the session written for a --schedule render has no schedule: ${c2f}")
+endif()
+run(0 "" render --session c2f.json --backend cpu --out c2f_again.png)
+file(SHA256 "${WORK}/c2f.png" first)
+file(SHA256 "${WORK}/c2f_again.png" second)
+if(NOT first STREQUAL second)
+  message(SEND_ERROR "the coarse-to-fine session does not reproduce its image")
+endif()
+run(2 "levels must go from coarse to fine" render --preset gs_coral --schedule 48:10,24:10 --out bad.png)
+run(2 "is not size:steps" render --preset gs_coral --schedule 48 --out bad.png)
+run(2 "drop --size and --steps" render --preset gs_coral --schedule 24:10 --size 24 --out bad.png)
+
 # Every output format.
 run(0 "" render --preset gs_coral --size 24 --steps 10 --backend cpu --bit-depth 16 --out deep.png)
 run(0 "" render --preset gs_coral --size 24 --steps 10 --backend cpu --out raw.exr)

@@ -44,12 +44,40 @@ struct RenderFlags {
     std::string stencil;
     std::string integrator;
     int sweeps = -1;
+    std::string schedule;
     std::string backend = "auto";
     std::string context;
     std::string colormap;
     std::string chemical;
     int bitDepth = 8;
 };
+
+void parseSize(const std::string& text, Session& s);
+
+// "128:4000,256:2000" (size:steps, size N or WxH), coarsest first.
+std::vector<ScheduleLevel> parseSchedule(const std::string& text) {
+    std::vector<ScheduleLevel> levels;
+    std::stringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        const auto colon = item.find(':');
+        Session probe;
+        char* end = nullptr;
+        const long steps =
+            colon == std::string::npos ? -1 : std::strtol(item.c_str() + colon + 1, &end, 10);
+        if (colon == std::string::npos || steps < 0 || *end != '\0')
+            throw InputError("--schedule '" + text + "': '" + item +
+                             "' is not size:steps (e.g. 128:4000,256:2000)");
+        parseSize(item.substr(0, colon), probe);
+        levels.push_back({probe.width, probe.height, int(steps)});
+    }
+    if (levels.empty())
+        throw InputError("--schedule is empty");
+    for (std::size_t i = 1; i < levels.size(); ++i)
+        if (levels[i].width < levels[i - 1].width || levels[i].height < levels[i - 1].height)
+            throw InputError("--schedule '" + text + "': levels must go from coarse to fine");
+    return levels;
+}
 
 void parseSize(const std::string& text, Session& s) {
     int w = 0, h = 0;
@@ -74,9 +102,14 @@ Session buildSession(const RenderFlags& f) {
         throw InputError("--preset and --session are exclusive: give one");
     Session s = !f.sessionFile.empty() ? loadSessionFile(f.sessionFile)
                                        : loadPreset(f.preset.empty() ? kDefaultPreset : f.preset);
-    if (!s.schedule.empty() && (!f.size.empty() || f.steps >= 0))
+    if (!f.schedule.empty()) {
+        if (!f.size.empty() || f.steps >= 0)
+            throw InputError("--schedule sets the sizes and steps: drop --size and --steps");
+        applySchedule(s, parseSchedule(f.schedule));
+    } else if (!s.schedule.empty() && (!f.size.empty() || f.steps >= 0)) {
         throw InputError("--size and --steps do not apply to a session with a coarse-to-fine "
-                         "\"schedule\": edit its levels instead");
+                         "\"schedule\": edit its levels or use --schedule");
+    }
     if (!f.size.empty())
         parseSize(f.size, s);
     if (f.steps >= 0)
@@ -264,7 +297,9 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--edges", flags->edges, "periodic (seamless) or clamped");
     cmd->add_option("--stencil", flags->stencil, "Laplacian: 5-point or 9-point");
     cmd->add_option("--integrator", flags->integrator, "explicit_euler or semi_implicit");
-    cmd->add_option("--sweeps", flags->sweeps, "Jacobi sweeps per semi-implicit step");
+    cmd->add_option("--sweeps", flags->sweeps, "relaxation sweeps per semi-implicit step");
+    cmd->add_option("--schedule", flags->schedule,
+                    "coarse-to-fine levels size:steps, coarsest first (e.g. 128:4000,256:2000)");
     cmd->add_option("--backend", flags->backend, "auto, gpu or cpu (default auto)");
     cmd->add_option(
         "--context", flags->context,

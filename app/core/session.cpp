@@ -164,12 +164,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
             l.steps = int(level.integer("steps", 0, 0, 100000000));
             s.schedule.push_back(l);
         }
-        // The finest level is the session's grid.
-        s.width = s.schedule.back().width;
-        s.height = s.schedule.back().height;
-        s.steps = 0;
-        for (const ScheduleLevel& l : s.schedule)
-            s.steps += l.steps;
+        applySchedule(s, s.schedule);
     }
 
     // A session's "init" replaces the model's default start whole: fields it
@@ -343,6 +338,16 @@ void applyParamOverride(Session& session, const std::string& assignment) {
         throw InputError(os.str());
     }
     session.params[name] = float(v);
+}
+
+void applySchedule(Session& session, std::vector<ScheduleLevel> levels) {
+    assert(!levels.empty());
+    session.schedule = std::move(levels);
+    session.width = session.schedule.back().width;
+    session.height = session.schedule.back().height;
+    session.steps = 0;
+    for (const ScheduleLevel& l : session.schedule)
+        session.steps += l.steps;
 }
 
 void validateSession(const Session& s, const std::string& source) {

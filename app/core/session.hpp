@@ -88,6 +88,10 @@ Session loadPreset(const std::string& name);
 // parameter and the accepted names/range.
 void applyParamOverride(Session& session, const std::string& assignment);
 
+// Sets a coarse-to-fine schedule: the grid becomes the last level's and the
+// steps the levels' total.
+void applySchedule(Session& session, std::vector<ScheduleLevel> levels);
+
 // Checks params against the model's ranges and the grid against limits.
 void validateSession(const Session& session, const std::string& source);
 
