@@ -148,6 +148,28 @@ TEST(SemiImplicit, StepsBeyondTheExplicitLimitMakeTheSamePattern) {
     EXPECT_LT(i.nyquistFraction, 0.05);
 }
 
+TEST(CoarseToFine, ACoarseLevelGrowsThePatternAtTheFineScale) {
+    // Run only the coarse level (the fine level gets 0 steps): the coarse
+    // pattern, resampled to the final grid, must already have the flat
+    // run's wavelength in final cells, i.e. half of it in coarse cells.
+    Session s = test::smallSession("turk_small_spots", 128, 0);
+    applySchedule(s, {{64, 64, 0}, {128, 128, 0}});
+    s.schedule[0].steps = 2500;
+    s.steps = 2500;
+    s.params["Da"] = 4.0f; // a wavelength of ~14 cells at 128, ~7 at 64
+    s.params["Db"] = 1.0f;
+    s.dt = 0.045f;
+    const RunResult c2f = runSession(
+        s, [](const Session& l) { return std::make_unique<CpuSimulator>(l); }, RunOptions{});
+    Session flat = s;
+    flat.schedule.clear();
+    flat.steps = 2500;
+    const double wc = spectrumStats(c2f.state, 1).dominantWavelength;
+    const double wf = spectrumStats(test::runCpu(flat), 1).dominantWavelength;
+    std::printf("coarse level only: wavelength %.2f (final cells); flat %.2f\n", wc, wf);
+    EXPECT_NEAR(wc, wf, 0.2 * wf);
+}
+
 TEST(CoarseToFine, LevelsRunInOrderAndKeepThePatternScale) {
     Session s = test::smallSession("gs_coral", 128, 0);
     s.schedule = {{64, 64, 1500}, {128, 128, 1000}};

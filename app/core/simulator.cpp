@@ -35,8 +35,8 @@ StepConstants StepConstants::fromSession(const Session& session) {
     for (int c = 0; c < 4; ++c) {
         if (c < k.chemicals) {
             const ChemicalSpec& spec = model.chemicals()[std::size_t(c)];
-            k.diffusion[c] =
-                spec.diffusionParam.empty() ? 0.0f : session.params.at(spec.diffusionParam);
+            // Scaled to the level's grid spacing, as the operator's rates are.
+            k.diffusion[c] = k.op.rates[std::size_t(c)];
             k.clampMin[c] = spec.clampMin;
             k.clampMax[c] = spec.clampMax;
         } else {
