@@ -19,18 +19,40 @@ void setVec4(GLint location, const std::array<float, 4>& v) {
 
 } // namespace
 
-std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model) {
-    std::string uniforms = "// parameters of model " + model.name() + "\n";
+std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model, const StepConstants& k) {
+    // Parameters reach the reaction snippet as globals p_<name>, loaded per
+    // fragment from a uniform u_<name> or, for mapped ones, from uParamMap.
+    static const char* kComponents[] = {"x", "y", "z", "w"};
+    std::string text = "// parameters of model " + model.name() + "\n";
     for (const ParamSpec& p : model.params())
-        uniforms += "uniform float p_" + p.name + ";\n";
-    return {{"<parameter uniforms>", uniforms},
-            embeddedShader(model.glslPath()),
+        text += "uniform float u_" + p.name + ";\nfloat p_" + p.name + ";\n";
+    if (k.hasParamMaps())
+        text += "uniform sampler2D uParamMap;\n";
+    text += "void loadParams(vec2 uv) {\n";
+    if (k.hasParamMaps())
+        text += "    vec4 mapped = texture(uParamMap, uv);\n";
+    for (std::size_t i = 0; i < model.params().size(); ++i) {
+        const std::string& name = model.params()[i].name;
+        std::string source = "u_" + name;
+        for (std::size_t m = 0; m < k.mappedParams.size(); ++m)
+            if (k.mappedParams[m] == int(i))
+                source = std::string("mapped.") + kComponents[m];
+        text += "    p_" + name + " = " + source + ";\n";
+    }
+    text += "}\n// Per chemical: the cell's diffusion rate where it is mapped (the operator\n"
+            "// was built at rate 1 for it), else 1.\nvec4 rateScale() {\n    return vec4(";
+    for (int c = 0; c < 4; ++c) {
+        const int m = k.mappedRate[std::size_t(c)];
+        text += (c ? ", " : "") +
+                (m < 0 ? std::string("1.0")
+                       : "p_" + model.params()[std::size_t(k.mappedParams[std::size_t(m)])].name);
+    }
+    text += ");\n}\n";
+    return {{"<parameters>", text}, embeddedShader(model.glslPath()),
             embeddedShader("glsl/step.frag")};
 }
 
-GLenum stateFormat(int chemicals) {
-    return chemicals <= 2 ? GL_RG32F : GL_RGBA32F;
-}
+GLenum stateFormat(int chemicals) { return chemicals <= 2 ? GL_RG32F : GL_RGBA32F; }
 
 PingPong::PingPong(int width, int height, GLenum internalFormat, GLenum wrap) {
     for (std::size_t i = 0; i < 2; ++i) {
@@ -54,19 +76,20 @@ void PingPong::run(const Program& program, int passes) {
 }
 
 GpuSimulator::GpuSimulator(const Session& session)
-    : m_k(StepConstants::fromSession(session)),
+    : m_session(session), m_model(&session.reactionModel()),
+      m_k(StepConstants::fromSession(session)),
       m_pingPong(session.width, session.height, stateFormat(m_k.chemicals),
                  session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE) {
     const DiffusionOperator& op = m_k.op;
-    const bool semiImplicit = m_k.integrator == Integrator::SemiImplicit;
-    m_program = buildProgram(session, semiImplicit ? "JACOBI_PASS" : nullptr);
-    if (semiImplicit) {
-        m_program.use();
-        glUniform1i(m_program.uniform("uRhs"), 2);
-        setVec4(m_program.uniform("uOmega"), m_k.omega);
-        m_rhsProgram = buildProgram(session, "RHS_PASS");
+    buildPrograms();
+    if (m_k.integrator == Integrator::SemiImplicit) {
         m_rhs = Texture2D(session.width, session.height, stateFormat(m_k.chemicals));
         m_rhsFramebuffer = Framebuffer(m_rhs);
+    }
+    if (m_k.hasParamMaps()) {
+        m_paramMap = Texture2D(session.width, session.height, GL_RGBA32F);
+        m_paramMap.setWrap(session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+        m_paramMap.uploadRgba(m_k.paramMaps.toRgba());
     }
     if (op.form == DiffusionOperator::Form::TensorMap) {
         m_map = Texture2D(session.width, session.height, GL_RGBA32F);
@@ -75,8 +98,35 @@ GpuSimulator::GpuSimulator(const Session& session)
     }
 }
 
-Program GpuSimulator::buildProgram(const Session& session, const char* pass) const {
-    const ReactionModel& model = session.reactionModel();
+void GpuSimulator::buildPrograms() {
+    const bool semiImplicit = m_k.integrator == Integrator::SemiImplicit;
+    m_program = buildProgram(semiImplicit ? "JACOBI_PASS" : nullptr);
+    if (semiImplicit) {
+        m_program.use();
+        glUniform1i(m_program.uniform("uRhs"), 2);
+        setVec4(m_program.uniform("uOmega"), m_k.omega);
+        m_rhsProgram = buildProgram("RHS_PASS");
+    }
+}
+
+void GpuSimulator::setFrozen(const std::vector<std::uint8_t>& frozen) {
+    const bool hadMask = !m_frozenMask.empty();
+    m_frozenMask = frozen;
+    if (!frozen.empty()) {
+        std::vector<float> rgba(frozen.size() * 4, 0.0f);
+        for (std::size_t i = 0; i < frozen.size(); ++i)
+            rgba[i * 4] = frozen[i] ? 1.0f : 0.0f;
+        if (!m_frozen.id())
+            m_frozen = Texture2D(m_k.domain.width(), m_k.domain.height(), GL_RGBA32F);
+        m_frozen.uploadRgba(rgba);
+    }
+    if (hadMask != !frozen.empty())
+        buildPrograms(); // the FROZEN variant comes and goes with the mask
+}
+
+Program GpuSimulator::buildProgram(const char* pass) const {
+    const ReactionModel& model = *m_model;
+    const Session& session = m_session;
     using Form = DiffusionOperator::Form;
     const DiffusionOperator& op = m_k.op;
     std::vector<std::string> defines;
@@ -98,7 +148,10 @@ Program GpuSimulator::buildProgram(const Session& session, const char* pass) con
     }
     if (pass)
         defines.push_back(pass);
-    Program program({embeddedShader("glsl/fullscreen.vert")}, stepFragmentPieces(model), defines);
+    if (!m_frozenMask.empty())
+        defines.push_back("FROZEN");
+    Program program({embeddedShader("glsl/fullscreen.vert")}, stepFragmentPieces(model, m_k),
+                    defines);
 
     program.use();
     glUniform1i(program.uniform("uState"), 0);
@@ -109,7 +162,9 @@ Program GpuSimulator::buildProgram(const Session& session, const char* pass) con
     setVec4(program.uniform("uClampMin"), m_k.clampMin);
     setVec4(program.uniform("uClampMax"), m_k.clampMax);
     for (std::size_t i = 0; i < model.params().size(); ++i)
-        glUniform1f(program.uniform(("p_" + model.params()[i].name).c_str()), m_k.params[i]);
+        glUniform1f(program.uniform(("u_" + model.params()[i].name).c_str()), m_k.params[i]);
+    glUniform1i(program.uniform("uParamMap"), 3);
+    glUniform1i(program.uniform("uFrozen"), 4);
 
     if (op.form == Form::Kernel3 || op.form == Form::Kernel5) {
         // One vec4 per tap, one component per chemical.
@@ -139,6 +194,10 @@ void GpuSimulator::bindAuxiliaryTextures() const {
         m_map.bind(1);
     if (m_rhs.id())
         m_rhs.bind(2);
+    if (m_paramMap.id())
+        m_paramMap.bind(3);
+    if (m_frozen.id())
+        m_frozen.bind(4);
 }
 
 void GpuSimulator::setState(const State& state) {

@@ -43,13 +43,17 @@ public:
     void setState(const State& state) override;
     State state() const override;
     void run(int steps) override;
+    void setFrozen(const std::vector<std::uint8_t>& frozen) override;
 
 private:
     // Compiles glsl/step.frag with the operator's variant plus `pass`, and
     // sets the uniforms every variant shares.
-    Program buildProgram(const Session& session, const char* pass) const;
+    Program buildProgram(const char* pass) const;
+    void buildPrograms();
     void bindAuxiliaryTextures() const;
 
+    Session m_session;
+    const ReactionModel* m_model;
     StepConstants m_k;
     Program m_program; // explicit step, or the Jacobi sweep
     PingPong m_pingPong;
@@ -58,11 +62,14 @@ private:
     Program m_rhsProgram;
     Texture2D m_rhs;
     Framebuffer m_rhsFramebuffer;
+    Texture2D m_paramMap; // param_maps: up to 4 parameters per cell
+    Texture2D m_frozen;   // cascades: 1 where a cell is frozen
+    std::vector<std::uint8_t> m_frozenMask;
 };
 
 // The shader pieces of a model's step program (also used by the agreement
 // test of the GLSL and C++ reactions).
-std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model);
+std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model, const StepConstants& k);
 
 // The copy pass the benchmark measures the step against: same format, same
 // size, one fetch per texel, same ping-pong.

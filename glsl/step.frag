@@ -30,9 +30,15 @@ uniform vec4 uMapDc;
 uniform vec4 uMapDs;
 #endif
 
+#ifdef FROZEN
+uniform sampler2D uFrozen; // 1 where a cell keeps its value (cascades)
+#endif
+
 out vec4 outState;
 
 vec4 react(vec4 c);
+void loadParams(vec2 uv); // generated in C++: p_<name> from uniforms or uParamMap
+vec4 rateScale();         // generated: per-chemical diffusion rate of this cell, or 1
 
 #define AT(dx, dy) textureOffset(uState, uv, ivec2(dx, dy))
 #define TAP(dx, dy) sum += uKernel[(dy + 2) * 5 + dx + 2] * AT(dx, dy)
@@ -80,10 +86,22 @@ vec4 diffusion(vec2 uv, vec4 c) {
 #endif
 }
 
+// Frozen cells copy their value through, bit for bit.
+#ifdef FROZEN
+#define KEEP_FROZEN(uv)                                                                            \
+    if (texture(uFrozen, uv).x > 0.5) {                                                            \
+        outState = texture(uState, uv);                                                            \
+        return;                                                                                    \
+    }
+#else
+#define KEEP_FROZEN(uv)
+#endif
+
 #if defined(RHS_PASS)
 // Semi-implicit, first pass: the right-hand side c + dt f(c).
 void main() {
     vec2 uv = gl_FragCoord.xy * uInvSize;
+    loadParams(uv);
     vec4 c = texture(uState, uv);
     outState = c + uDt * react(c);
 }
@@ -95,14 +113,18 @@ uniform sampler2D uRhs;
 uniform vec4 uOmega;
 void main() {
     vec2 uv = gl_FragCoord.xy * uInvSize;
+    KEEP_FROZEN(uv)
+    loadParams(uv);
     vec4 x = texture(uState, uv);
-    outState = clamp(x + uOmega * (texture(uRhs, uv) - x + uDt * diffusion(uv, x)), uClampMin,
-                     uClampMax);
+    outState = clamp(x + uOmega * (texture(uRhs, uv) - x + uDt * rateScale() * diffusion(uv, x)),
+                     uClampMin, uClampMax);
 }
 #else
 void main() {
     vec2 uv = gl_FragCoord.xy * uInvSize;
+    KEEP_FROZEN(uv)
+    loadParams(uv);
     vec4 c = texture(uState, uv);
-    outState = clamp(c + uDt * (react(c) + diffusion(uv, c)), uClampMin, uClampMax);
+    outState = clamp(c + uDt * (react(c) + rateScale() * diffusion(uv, c)), uClampMin, uClampMax);
 }
 #endif

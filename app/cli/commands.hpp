@@ -11,5 +11,7 @@ void addRenderCommand(CLI::App& app);
 void addPresetsCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addPropagatorCommand(CLI::App& app);
+void addGalleryCommand(CLI::App& app);
+void addMapCommand(CLI::App& app);
 
 } // namespace morphogen::cli

@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
     morphogen::cli::addPresetsCommand(app);
     morphogen::cli::addBenchCommand(app);
     morphogen::cli::addPropagatorCommand(app);
+    morphogen::cli::addGalleryCommand(app);
+    morphogen::cli::addMapCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

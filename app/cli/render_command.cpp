@@ -1,5 +1,4 @@
 #include <atomic>
-#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -8,13 +7,13 @@
 #include "cli/backend.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
+#include "cli/render_output.hpp"
 #include "core/colormap.hpp"
 #include "core/errors.hpp"
 #include "core/image_io.hpp"
 #include "core/initial_condition.hpp"
 #include "core/runner.hpp"
 #include "core/session.hpp"
-#include "core/stability.hpp"
 
 namespace morphogen::cli {
 
@@ -166,47 +165,6 @@ Session buildSession(const RenderFlags& f) {
     return s;
 }
 
-// Explicit steps: report the spectral radius of I + dt A from the operator's
-// Fourier symbol; refuse an operator that grows for every dt, cap a dt above
-// the limit (saying so; the written session records the capped dt).
-void checkStability(Session& session) {
-    if (session.integrator == Integrator::SemiImplicit) {
-        const StepConstants k = StepConstants::fromSession(session);
-        std::fprintf(stderr,
-                     "morphogen: semi-implicit step: %d relaxation sweeps, residual factor %.3g "
-                     "per sweep (%.2g per step) from the operator's symbol\n",
-                     k.jacobiSweeps, k.contraction, std::pow(k.contraction, k.jacobiSweeps));
-        return;
-    }
-    const ExplicitStability st =
-        explicitStability(compileDiffusion(session), session.width, session.height, session.dt);
-    if (!st.maxStableDt) {
-        std::ostringstream os;
-        os << "the diffusion operator has Fourier modes that grow for every explicit time step "
-              "(max Re(lambda) = "
-           << st.maxRealPart
-           << "); set \"stabilize\": true in its diffusion block, or use --integrator "
-              "semi_implicit";
-        throw InputError(os.str());
-    }
-    if (session.dt > *st.maxStableDt) {
-        const float capped = float(0.9 * *st.maxStableDt);
-        std::fprintf(stderr,
-                     "morphogen: warning: dt %g exceeds the explicit stability limit %.4g "
-                     "(%s); capped to %.4g\n",
-                     session.dt, *st.maxStableDt,
-                     st.exact ? "spectral radius of I + dt A from the kernel's Fourier symbol"
-                              : "Gershgorin bound of the diffusion map",
-                     capped);
-        session.dt = capped;
-    } else if (st.exact) {
-        std::fprintf(stderr,
-                     "morphogen: explicit step: spectral radius of I + dt A = %.4f at dt %g "
-                     "(largest stable dt %.4g)\n",
-                     st.spectralRadius, session.dt, *st.maxStableDt);
-    }
-}
-
 std::string defaultSessionOut(const std::string& out) {
     std::filesystem::path p(out);
     return p.replace_extension(".json").string();
@@ -214,7 +172,7 @@ std::string defaultSessionOut(const std::string& out) {
 
 void render(const RenderFlags& f) {
     Session session = buildSession(f);
-    const ImageFormat format = imageFormatForPath(f.out);
+    imageFormatForPath(f.out); // an unsupported extension is bad input, found before the run
     if (f.bitDepth != 8 && f.bitDepth != 16)
         throw InputError("--bit-depth " + std::to_string(f.bitDepth) +
                          " is not supported (accepted: 8, 16)");
@@ -228,7 +186,6 @@ void render(const RenderFlags& f) {
     checkStability(session);
     Backend backend = makeBackend(parseBackendChoice(f.backend), parseContextFlag(f.context));
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
-    const ReactionModel& model = session.reactionModel();
 
     g_interrupted.store(false);
     auto previous = std::signal(SIGINT, onInterrupt);
@@ -237,8 +194,7 @@ void render(const RenderFlags& f) {
     RunOptions options;
     options.progress = [&](int done, int) { progress.update(done); };
     options.cancel = &g_interrupted;
-    // Chunks bound how long Ctrl-C waits and how often blow-up is checked.
-    options.chunk = std::max(50, std::min(500, int(4e7 / double(session.width * session.height))));
+    options.chunk = runChunk(session);
     RunResult result;
     try {
         result = runSession(session, backend.makeSimulator, options);
@@ -247,7 +203,6 @@ void render(const RenderFlags& f) {
         throw;
     }
     std::signal(SIGINT, previous);
-    session = result.completed;
 
     if (result.cancelled) {
         progress.finish("interrupted after " + std::to_string(result.stepsDone) +
@@ -256,17 +211,7 @@ void render(const RenderFlags& f) {
         progress.finish("done: " + std::to_string(result.stepsDone) + " steps");
     }
 
-    if (format == ImageFormat::Exr) {
-        std::vector<std::string> names;
-        for (const ChemicalSpec& c : model.chemicals())
-            names.push_back(c.name);
-        writeRawImage(f.out, result.state, names);
-    } else {
-        const int chemical = colormapChemical(session.colormap, model);
-        writeRgbImage(f.out, applyColormap(result.state, chemical, session.colormap), session.width,
-                      session.height, f.bitDepth);
-    }
-    saveSessionFile(session, sessionOut);
+    writeRenderOutput(result, f.out, sessionOut, f.bitDepth);
     std::printf("%s\n%s\n", f.out.c_str(), sessionOut.c_str());
     if (result.cancelled)
         throw std::runtime_error("interrupted; wrote the state after " +

@@ -11,136 +11,16 @@
 
 #include <omp.h>
 
-#include "core/models/gray_scott.hpp"
-#include "core/models/turing_mcgraw.hpp"
-#include "core/models/turing_turk.hpp"
-
-// GCC builds an AVX2 copy of each fused kernel beside the baseline x86-64
-// (SSE2) one and picks per machine when the program loads, so one binary
-// runs anywhere and uses 8-wide vectors where it can. Not "fma", nor
-// "arch=x86-64-v3", which implies it: GCC would then contract a * b + c into
-// fused multiply-adds, and the CPU results would stop matching the generic
-// path, older runs and llvmpipe bit for bit.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define MORPHOGEN_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define MORPHOGEN_VECTOR_CLONES
-#endif
+#include "core/cpu_kernels.hpp"
 
 namespace morphogen {
 
 namespace {
 
-using FusedKernel = void (*)(const StepConstants& k, const State& in, State& out, int y0, int y1);
-
 // Below ~64k cells a step takes microseconds and the fork/join barrier
 // would dominate (and spin-waits thrash when processes share the cores).
 bool threaded(const State& state) {
     return state.cellCount() >= 65536;
-}
-
-// --- Fused path ----------------------------------------------------------------
-
-// lap at column x of one chemical, xl and xr being its (wrapped or clamped)
-// neighbour columns. The sums run in the order the generic path and the GLSL
-// use; reordering them changes the last bits.
-template <Stencil S>
-inline float laplacian(const float* up, const float* row, const float* down, int xl, int x,
-                       int xr) {
-    if constexpr (S == Stencil::FivePoint) {
-        return row[xl] + row[xr] + up[x] + down[x] - 4.0f * row[x];
-    } else {
-        const float sides = row[xl] + row[xr] + up[x] + down[x];
-        const float corners = up[xl] + up[xr] + down[xl] + down[xr];
-        return (4.0f * sides + corners - 20.0f * row[x]) * (1.0f / 6.0f);
-    }
-}
-
-// Steps rows [y0, y1) with Cell's reaction inlined: one pass per row, every
-// chemical's stencil, the reaction, the Euler update and the clamp per cell,
-// and no row buffers. Requires (diffusion != 0) == Cell::diffuses() per
-// chemical (fusedKernelIf checks), so no lap is spent on Turk's beta.
-template <class Cell, Stencil S>
-MORPHOGEN_VECTOR_CLONES void stepRowsFused(const StepConstants& k, const State& in, State& out,
-                                           int y0, int y1) {
-    constexpr int n = Cell::kChemicals;
-    const Cell cell(k.params.data());
-    const int w = in.width(), h = in.height();
-    const EdgeMode edges = k.domain.edges();
-    const float dt = k.dt;
-    float d[n], lo[n], hi[n], dTimesZero[n];
-    for (int c = 0; c < n; ++c) {
-        d[c] = k.diffusion[c];
-        lo[c] = k.clampMin[c];
-        hi[c] = k.clampMax[c];
-        // The generic path adds D * lap with lap filled with 0 for these.
-        dTimesZero[c] = d[c] * 0.0f;
-    }
-    const int xFirstLeft = GridDomain::wrapOrClamp(-1, w, edges);
-    const int xFirstRight = GridDomain::wrapOrClamp(1, w, edges);
-    const int xLastRight = GridDomain::wrapOrClamp(w, w, edges);
-    for (int y = y0; y < y1; ++y) {
-        const std::size_t yUp = std::size_t(GridDomain::wrapOrClamp(y - 1, h, edges)) * w;
-        const std::size_t yMid = std::size_t(y) * w;
-        const std::size_t yDown = std::size_t(GridDomain::wrapOrClamp(y + 1, h, edges)) * w;
-        const float *up[n], *row[n], *down[n];
-        float* next[n];
-        for (int c = 0; c < n; ++c) {
-            const float* plane = in.plane(c);
-            up[c] = plane + yUp;
-            row[c] = plane + yMid;
-            down[c] = plane + yDown;
-            next[c] = out.plane(c) + yMid;
-        }
-        const auto stepCell = [&](int xl, int x, int xr) {
-            float conc[n], dcdt[n];
-            for (int c = 0; c < n; ++c)
-                conc[c] = row[c][x];
-            cell.react(conc, dcdt);
-            for (int c = 0; c < n; ++c) {
-                const float diffusion = Cell::diffuses(c)
-                                            ? d[c] * laplacian<S>(up[c], row[c], down[c], xl, x, xr)
-                                            : dTimesZero[c];
-                next[c][x] = std::min(std::max(conc[c] + dt * (dcdt[c] + diffusion), lo[c]), hi[c]);
-            }
-        };
-        stepCell(xFirstLeft, 0, xFirstRight);
-        if (w > 1)
-            stepCell(w - 2, w - 1, xLastRight);
-#pragma omp simd
-        for (int x = 1; x < w - 1; ++x)
-            stepCell(x - 1, x, x + 1);
-    }
-}
-
-// The fused kernel for a model, or null where the generic path must run:
-// a model without a Cell here, or a zero diffusion rate on a chemical that
-// normally diffuses (its lap must count as exactly 0, as the generic path has it).
-template <class Model>
-FusedKernel fusedKernelIf(const ReactionModel& model, const StepConstants& k) {
-    using Cell = typename Model::Cell;
-    if (dynamic_cast<const Model*>(&model) == nullptr)
-        return nullptr;
-    // The fused kernels know only the isotropic 5- and 9-point Laplacians.
-    if (k.op.form != DiffusionOperator::Form::Laplacian5 &&
-        k.op.form != DiffusionOperator::Form::Laplacian9)
-        return nullptr;
-    assert(Cell::kChemicals == k.chemicals);
-    for (int c = 0; c < Cell::kChemicals; ++c)
-        if ((k.diffusion[c] != 0.0f) != Cell::diffuses(c))
-            return nullptr;
-    if (k.stencil == Stencil::FivePoint)
-        return &stepRowsFused<Cell, Stencil::FivePoint>;
-    return &stepRowsFused<Cell, Stencil::NinePoint>;
-}
-
-FusedKernel fusedKernelFor(const ReactionModel& model, const StepConstants& k) {
-    for (FusedKernel kernel :
-         {fusedKernelIf<GrayScottModel>(model, k), fusedKernelIf<TuringTurkModel>(model, k),
-          fusedKernelIf<TuringMcGrawModel>(model, k)})
-        if (kernel != nullptr)
-            return kernel;
-    return nullptr;
 }
 
 // Denormals: Gray-Scott's background v decays through the denormal range,
@@ -162,6 +42,19 @@ private:
     unsigned m_saved;
 #endif
 };
+
+// Runs band(y0, y1) on one contiguous band of rows per thread, as
+// schedule(static) would split them, with one kernel call per band rather
+// than per row.
+template <class Band> void forEachBand(const State& state, const Band& band) {
+    const int h = state.height();
+#pragma omp parallel if (threaded(state))
+    {
+        const FlushDenormals flush;
+        const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+        band(int(std::int64_t(h) * t / threads), int(std::int64_t(h) * (t + 1) / threads));
+    }
+}
 
 // --- Generic path ----------------------------------------------------------------
 
@@ -254,7 +147,9 @@ CpuSimulator::CpuSimulator(const Session& session)
     : m_model(session.reactionModel()), m_k(StepConstants::fromSession(session)),
       m_current(session.width, session.height, m_k.chemicals),
       m_next(session.width, session.height, m_k.chemicals) {
-    m_fused = fusedKernelFor(m_model, m_k);
+    m_explicitStep = fusedExplicitStep(m_model, m_k);
+    m_rhsPass = fusedRhsPass(m_model, m_k);
+    m_sweep = fusedSweep(m_k);
 }
 
 void CpuSimulator::setState(const State& state) {
@@ -268,25 +163,56 @@ void CpuSimulator::run(int steps) {
         step();
 }
 
+void CpuSimulator::setFrozen(const std::vector<std::uint8_t>& frozen) {
+    assert(frozen.empty() || frozen.size() == m_current.cellCount());
+    // An index list: frozen cells are few, and the fused kernels stay untouched.
+    m_frozenCells.clear();
+    for (std::size_t i = 0; i < frozen.size(); ++i)
+        if (frozen[i])
+            m_frozenCells.push_back(std::uint32_t(i));
+}
+
+void CpuSimulator::restoreFrozen() {
+    for (int c = 0; c < m_k.chemicals; ++c) {
+        const float* from = m_current.plane(c);
+        float* to = m_next.plane(c);
+        for (std::uint32_t i : m_frozenCells)
+            to[i] = from[i];
+    }
+}
+
+void CpuSimulator::reactRow(RowView& view, int y, std::vector<float>& params) const {
+    if (!m_k.hasParamMaps()) {
+        m_model.react(view, m_k.params.data());
+        return;
+    }
+    // One cell at a time with that cell's parameters: slower, but param maps
+    // are for maps and sweeps, not for speed.
+    const std::size_t row = std::size_t(y) * std::size_t(view.n);
+    RowView cell;
+    cell.n = 1;
+    for (int x = 0; x < view.n; ++x) {
+        for (std::size_t m = 0; m < m_k.mappedParams.size(); ++m)
+            params[std::size_t(m_k.mappedParams[m])] = m_k.paramMaps.plane(int(m))[row + x];
+        for (int c = 0; c < m_k.chemicals; ++c) {
+            cell.c[c] = view.c[c] + x;
+            cell.dcdt[c] = view.dcdt[c] + x;
+        }
+        m_model.react(cell, params.data());
+    }
+}
+
 void CpuSimulator::step() {
     if (m_k.integrator == Integrator::SemiImplicit) {
         stepSemiImplicit();
         return;
     }
-    if (m_fused == nullptr) {
+    if (m_explicitStep == nullptr) {
         stepGeneric();
         return;
     }
-    const int h = m_current.height();
-    // One contiguous band of rows per thread, as schedule(static) would give,
-    // with one kernel call per band rather than per row.
-#pragma omp parallel if (threaded(m_current))
-    {
-        const FlushDenormals flush;
-        const int t = omp_get_thread_num(), threads = omp_get_num_threads();
-        m_fused(m_k, m_current, m_next, int(std::int64_t(h) * t / threads),
-                int(std::int64_t(h) * (t + 1) / threads));
-    }
+    forEachBand(m_current, [&](int y0, int y1) { m_explicitStep(m_k, m_current, m_next, y0, y1); });
+    restoreFrozen();
     std::swap(m_current, m_next);
 }
 
@@ -330,6 +256,7 @@ void CpuSimulator::stepGeneric() {
     {
         const FlushDenormals flush;
         std::vector<float> scratch(std::size_t(w) * 2 * 4);
+        std::vector<float> params = m_k.params;
         float* term[4];
         RowView view;
         view.n = w;
@@ -343,8 +270,14 @@ void CpuSimulator::stepGeneric() {
                 const float* plane = m_current.plane(c);
                 view.c[c] = plane + std::size_t(y) * w;
                 diffusionRow(c, plane, y, term[c]);
+                // A mapped rate: the operator was compiled at rate 1.
+                if (const int m = m_k.mappedRate[std::size_t(c)]; m >= 0) {
+                    const float* rate = m_k.paramMaps.plane(m) + std::size_t(y) * w;
+                    for (int x = 0; x < w; ++x)
+                        term[c][x] = rate[x] * term[c][x];
+                }
             }
-            m_model.react(view, m_k.params.data());
+            reactRow(view, y, params);
             for (int c = 0; c < nc; ++c) {
                 const float* cur = view.c[c];
                 const float* r = view.dcdt[c];
@@ -358,18 +291,37 @@ void CpuSimulator::stepGeneric() {
             }
         }
     }
+    restoreFrozen();
     std::swap(m_current, m_next);
 }
 
 void CpuSimulator::stepSemiImplicit() {
-    const int w = m_current.width(), h = m_current.height(), nc = m_k.chemicals;
+    const int w = m_current.width(), h = m_current.height();
     if (m_rhs.cellCount() == 0)
-        m_rhs = State(w, h, nc);
+        m_rhs = State(w, h, m_k.chemicals);
+    if (m_rhsPass != nullptr)
+        forEachBand(m_current, [&](int y0, int y1) { m_rhsPass(m_k, m_current, m_rhs, y0, y1); });
+    else
+        rhsGeneric();
+    // fromSession refuses the tensor map here, so every operator has a sweep.
+    assert(m_sweep != nullptr);
+    // Relaxation sweeps from x0 = c: each reads m_current, writes m_next.
+    for (int sweep = 0; sweep < m_k.jacobiSweeps; ++sweep) {
+        forEachBand(m_current,
+                    [&](int y0, int y1) { m_sweep(m_k, m_current, m_rhs, m_next, y0, y1); });
+        restoreFrozen(); // the iterate starts at c, so frozen cells keep c exactly
+        std::swap(m_current, m_next);
+    }
+}
+
+void CpuSimulator::rhsGeneric() {
+    const int w = m_current.width(), h = m_current.height(), nc = m_k.chemicals;
     const float dt = m_k.dt;
 #pragma omp parallel if (threaded(m_current))
     {
         const FlushDenormals flush;
         std::vector<float> scratch(std::size_t(w) * 4);
+        std::vector<float> params = m_k.params;
         RowView view;
         view.n = w;
         for (int c = 0; c < 4; ++c)
@@ -378,7 +330,7 @@ void CpuSimulator::stepSemiImplicit() {
         for (int y = 0; y < h; ++y) {
             for (int c = 0; c < nc; ++c)
                 view.c[c] = m_current.plane(c) + std::size_t(y) * w;
-            m_model.react(view, m_k.params.data());
+            reactRow(view, y, params);
             for (int c = 0; c < nc; ++c) {
                 float* rhs = m_rhs.plane(c) + std::size_t(y) * w;
 #pragma omp simd
@@ -386,31 +338,6 @@ void CpuSimulator::stepSemiImplicit() {
                     rhs[x] = view.c[c][x] + dt * view.dcdt[c][x];
             }
         }
-    }
-    // Relaxation sweeps from x0 = c: each reads m_current, writes m_next.
-    for (int sweep = 0; sweep < m_k.jacobiSweeps; ++sweep) {
-#pragma omp parallel if (threaded(m_current))
-        {
-            const FlushDenormals flush;
-            std::vector<float> term(static_cast<std::size_t>(w));
-#pragma omp for schedule(static)
-            for (int y = 0; y < h; ++y)
-                for (int c = 0; c < nc; ++c) {
-                    const float* x0 = m_current.plane(c) + std::size_t(y) * w;
-                    diffusionRow(c, m_current.plane(c), y, term.data());
-                    const float* rhs = m_rhs.plane(c) + std::size_t(y) * w;
-                    float* out = m_next.plane(c) + std::size_t(y) * w;
-                    const float omega = m_k.omega[std::size_t(c)];
-                    const float lo = m_k.clampMin[c], hi = m_k.clampMax[c];
-#pragma omp simd
-                    for (int x = 0; x < w; ++x)
-                        out[x] = std::min(
-                            std::max(x0[x] + omega * (rhs[x] - x0[x] + dt * term[std::size_t(x)]),
-                                     lo),
-                            hi);
-                }
-        }
-        std::swap(m_current, m_next);
     }
 }
 

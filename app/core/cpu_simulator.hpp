@@ -1,15 +1,16 @@
 #pragma once
 
+#include "core/cpu_kernels.hpp"
 #include "core/simulator.hpp"
 
 namespace morphogen {
 
 // The CPU reference backend: the oracle for the GPU path in tests and the
 // fallback for batch work where the only GL is a software rasterizer. Rows
-// are split across OpenMP threads. Built-in models step through one fused
-// loop per row (stencil, reaction, update and clamp per cell, vectorised,
-// with an AVX2 clone picked at run time); other models, and runs with a zero
-// diffusion rate, take a generic path through ReactionModel::react().
+// are split across OpenMP threads. Built-in models on the homogeneous
+// operators step through the fused kernels of cpu_kernels.hpp; other models,
+// the tensor map and runs with a zero diffusion rate take a generic path
+// through ReactionModel::react() and row buffers.
 class CpuSimulator : public Simulator {
 public:
     explicit CpuSimulator(const Session& session);
@@ -18,28 +19,35 @@ public:
     void setState(const State& state) override;
     State state() const override { return m_current; }
     void run(int steps) override;
+    void setFrozen(const std::vector<std::uint8_t>& frozen) override;
 
     // Semi-implicit runs: max over cells of |(I - dt A) c' - (c + dt f(c))|
     // for the last step, i.e. how far the Jacobi sweeps left the solve.
     double lastSolveResidual() const;
 
 private:
-    // Steps rows [y0, y1) of in into out.
-    using FusedKernel = void (*)(const StepConstants& k, const State& in, State& out, int y0,
-                                 int y1);
-
     void step();
     void stepGeneric();
     void stepSemiImplicit();
+    void rhsGeneric(); // m_rhs = c + dt f(c) through ReactionModel::react()
+    // dc/dt of the reaction for one row into view.dcdt; per cell when
+    // parameters vary per cell (param maps), else one call for the row.
+    void reactRow(RowView& view, int y, std::vector<float>& params) const;
+    // Frozen cells of m_next take their values from m_current.
+    void restoreFrozen();
     // The diffusion term of chemical c on row y, rate included.
     void diffusionRow(int c, const float* plane, int y, float* out) const;
 
     const ReactionModel& m_model;
-    FusedKernel m_fused = nullptr; // null: the generic path
+    // Null where the generic path runs.
+    StepRowsKernel m_explicitStep = nullptr;
+    StepRowsKernel m_rhsPass = nullptr;
+    SweepRowsKernel m_sweep = nullptr;
     StepConstants m_k;
     State m_current;
     State m_next;
     State m_rhs; // SemiImplicit: c + dt f(c) of the step being solved
+    std::vector<std::uint32_t> m_frozenCells; // indices of frozen cells (cascades)
 };
 
 } // namespace morphogen

@@ -1,10 +1,13 @@
 #include "core/runner.hpp"
 
 #include <algorithm>
+#include <map>
+#include <optional>
 #include <sstream>
 
 #include "core/errors.hpp"
 #include "core/initial_condition.hpp"
+#include "core/cascade.hpp"
 #include "core/resample.hpp"
 #include "core/stability.hpp"
 
@@ -40,43 +43,79 @@ RunResult runSimulation(Simulator& simulator, const Session& session, const RunO
     return result;
 }
 
-RunResult runSession(const Session& session, const SimulatorFactory& makeSimulator,
-                     const RunOptions& options) {
+namespace {
+
+// One segment of a session: a schedule level or a cascade stage.
+struct Segment {
+    Session session; // its size, steps, params and grid spacing
+    std::optional<FreezeRule> freeze;
+    std::map<std::string, float> reset;
+};
+
+std::vector<Segment> segmentsOf(const Session& session) {
+    std::vector<Segment> segments;
+    Session base = session;
+    base.schedule.clear();
+    base.stages.clear();
+    if (!session.stages.empty()) {
+        for (const Stage& stage : session.stages) {
+            for (const auto& [name, value] : stage.params)
+                base.params[name] = value; // cumulative, as Turk's cascades change s
+            Segment segment{base, stage.freeze, stage.reset};
+            segment.session.steps = stage.steps;
+            segments.push_back(segment);
+        }
+        return segments;
+    }
     std::vector<ScheduleLevel> levels = session.schedule;
     if (levels.empty())
         levels.push_back({session.width, session.height, session.steps});
+    for (const ScheduleLevel& level : levels) {
+        Segment segment{base, std::nullopt, {}};
+        segment.session.width = level.width;
+        segment.session.height = level.height;
+        segment.session.steps = level.steps;
+        segment.session.gridSpacing = double(session.width) / level.width;
+        segments.push_back(segment);
+    }
+    return segments;
+}
+
+} // namespace
+
+RunResult runSession(const Session& session, const SimulatorFactory& makeSimulator,
+                     const RunOptions& options) {
     const ReactionModel& model = session.reactionModel();
+    const std::vector<Segment> segments = segmentsOf(session);
 
     RunResult total;
     total.completed = session;
-    std::vector<ScheduleLevel> done;
+    std::vector<int> stepsPerSegment;
     State state;
-    int stepsBefore = 0;
-    for (std::size_t i = 0; i < levels.size(); ++i) {
-        Session level = session;
-        level.schedule.clear();
-        level.width = levels[i].width;
-        level.height = levels[i].height;
-        level.steps = levels[i].steps;
-        level.gridSpacing = double(session.width) / level.width;
-        std::unique_ptr<Simulator> simulator = makeSimulator(level);
+    std::vector<std::uint8_t> frozen;
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        const Session& part = segments[i].session;
         if (i == 0)
-            state = makeInitialState(level.init, model, level.params, level.width, level.height,
-                                     level.seed);
-        else
-            state = resampleBilinear(state, level.width, level.height, level.edges);
-        simulator->setState(state);
+            state = makeInitialState(part.init, model, part.params, part.width, part.height,
+                                     part.seed);
+        else if (state.width() != part.width || state.height() != part.height)
+            state = resampleBilinear(state, part.width, part.height, part.edges);
+        if (segments[i].freeze)
+            frozen = applyFreezeRule(*segments[i].freeze, state, model, std::move(frozen));
+        if (!segments[i].reset.empty() && !frozen.empty())
+            resetFrozenCells(state, frozen, segments[i].reset, model);
 
-        RunOptions levelOptions = options;
+        std::unique_ptr<Simulator> simulator = makeSimulator(part);
+        simulator->setState(state);
+        simulator->setFrozen(frozen);
+        RunOptions partOptions = options;
+        const int before = total.stepsDone;
         if (options.progress)
-            levelOptions.progress = [&](int d, int) {
-                options.progress(stepsBefore + d, session.steps);
-            };
-        RunResult r = runSimulation(*simulator, level, levelOptions);
+            partOptions.progress = [&](int d, int) { options.progress(before + d, session.steps); };
+        RunResult r = runSimulation(*simulator, part, partOptions);
         state = std::move(r.state);
-        stepsBefore += r.stepsDone;
         total.stepsDone += r.stepsDone;
-        done.push_back({level.width, level.height, r.stepsDone});
+        stepsPerSegment.push_back(r.stepsDone);
         if (r.cancelled) {
             total.cancelled = true;
             break;
@@ -86,11 +125,22 @@ RunResult runSession(const Session& session, const SimulatorFactory& makeSimulat
     if (state.width() != session.width || state.height() != session.height)
         state = resampleBilinear(state, session.width, session.height, session.edges);
     total.state = std::move(state);
-    total.completed.steps = total.stepsDone;
+
+    // What reproduces this state: the segments run, with the steps they ran.
+    Session& done = total.completed;
+    done.steps = total.stepsDone;
     if (!session.schedule.empty()) {
-        total.completed.schedule = done;
-        if (done.back().width != session.width || done.back().height != session.height)
-            total.completed.schedule.push_back({session.width, session.height, 0});
+        done.schedule.resize(stepsPerSegment.size());
+        for (std::size_t i = 0; i < stepsPerSegment.size(); ++i)
+            done.schedule[i].steps = stepsPerSegment[i];
+        if (done.schedule.back().width != session.width ||
+            done.schedule.back().height != session.height)
+            done.schedule.push_back({session.width, session.height, 0});
+    }
+    if (!session.stages.empty()) {
+        done.stages.resize(stepsPerSegment.size());
+        for (std::size_t i = 0; i < stepsPerSegment.size(); ++i)
+            done.stages[i].steps = stepsPerSegment[i];
     }
     return total;
 }

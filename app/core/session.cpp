@@ -79,7 +79,8 @@ std::string paramNames(const ReactionModel& model) {
 Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
     top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
-                       "integrator", "jacobi_sweeps", "schedule", "dt", "steps", "seed", "init",
+                       "integrator", "jacobi_sweeps", "schedule", "stages", "param_maps", "dt",
+                       "steps", "seed", "init",
                        "colormap"});
     Session s;
     s.name = top.string("name", "");
@@ -166,6 +167,23 @@ Session sessionFromJson(const json& root, const std::string& source) {
         }
         applySchedule(s, s.schedule);
     }
+    if (const json* stages = top.find("stages")) {
+        if (!s.schedule.empty())
+            top.failField("stages", "cannot be combined with a coarse-to-fine schedule");
+        s.stages = stagesFromJson(*stages, source, *model);
+        s.steps = 0;
+        for (const Stage& stage : s.stages)
+            s.steps += stage.steps;
+    }
+    if (const json* maps = top.find("param_maps")) {
+        if (!s.schedule.empty())
+            top.failField("param_maps", "cannot be combined with a coarse-to-fine schedule");
+        s.paramMaps = paramMapsFromJson(*maps, source, *model);
+        for (const Stage& stage : s.stages)
+            for (const auto& [name, value] : stage.params)
+                if (s.paramMaps.count(name))
+                    top.failField("stages", "change '" + name + "', which param_maps sets per cell");
+    }
 
     // A session's "init" replaces the model's default start whole: fields it
     // leaves out are empty, not inherited.
@@ -223,6 +241,10 @@ json sessionToJson(const Session& s) {
     j["integrator"] = toString(s.integrator);
     if (s.integrator == Integrator::SemiImplicit)
         j["jacobi_sweeps"] = s.jacobiSweeps;
+    if (!s.stages.empty())
+        j["stages"] = stagesToJson(s.stages);
+    if (!s.paramMaps.empty())
+        j["param_maps"] = paramMapsToJson(s.paramMaps);
     if (!s.schedule.empty()) {
         j["schedule"] = json::array();
         for (const ScheduleLevel& l : s.schedule)

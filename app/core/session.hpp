@@ -8,8 +8,10 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "core/diffusion_spec.hpp"
+#include "core/cascade.hpp"
 #include "core/grid_domain.hpp"
 #include "core/initial_condition.hpp"
+#include "core/param_map.hpp"
 #include "core/reaction_model.hpp"
 
 namespace morphogen {
@@ -54,6 +56,11 @@ struct Session {
     // Coarse-to-fine levels, coarsest first; the last must be width x height.
     // Empty: one level of `steps` at width x height.
     std::vector<ScheduleLevel> schedule;
+    // Turk's cascades: stages run in order (exclusive with a schedule); the
+    // steps are their total. Empty: one stage of `steps`.
+    std::vector<Stage> stages;
+    // Parameters that vary over the grid, by name.
+    std::map<std::string, ParamMapSpec> paramMaps;
     // Cell size relative to the finest level (h); coarse levels have h > 1 and
     // their derivative kernels are scaled by 1/h^order. Set per level, not saved.
     double gridSpacing = 1.0;

@@ -2,9 +2,15 @@
 
 #include "core/errors.hpp"
 #include "core/kernel_symbol.hpp"
+#include "core/param_map.hpp"
 #include "core/stability.hpp"
 
 namespace morphogen {
+
+void Simulator::setFrozen(const std::vector<std::uint8_t>& frozen) {
+    if (!frozen.empty())
+        throw InputError("the " + backendName() + " backend cannot freeze cells");
+}
 
 StepConstants StepConstants::fromSession(const Session& session) {
     const ReactionModel& model = session.reactionModel();
@@ -14,7 +20,33 @@ StepConstants StepConstants::fromSession(const Session& session) {
     k.stencil = session.diffusion.stencil;
     k.domain = session.domain();
     k.params = model.packParams(session.params);
-    k.op = compileDiffusion(session);
+
+    // A mapped diffusion rate: compile the operator at rate 1 for it.
+    Session unitRates = session;
+    if (session.paramMaps.size() > 4)
+        throw InputError("at most 4 parameters can vary per cell (param_maps has " +
+                         std::to_string(session.paramMaps.size()) + ")");
+    k.paramMaps = State(session.width, session.height, int(session.paramMaps.size()));
+    for (const auto& [name, spec] : session.paramMaps) {
+        const int index = int(k.mappedParams.size());
+        for (std::size_t p = 0; p < model.params().size(); ++p)
+            if (model.params()[p].name == name)
+                k.mappedParams.push_back(int(p));
+        const std::vector<float> values =
+            evaluateParamMap(spec, session.width, session.height, session.seed, session.baseDir);
+        std::copy(values.begin(), values.end(), k.paramMaps.plane(index));
+        for (int c = 0; c < k.chemicals; ++c)
+            if (model.chemicals()[std::size_t(c)].diffusionParam == name) {
+                k.mappedRate[std::size_t(c)] = index;
+                unitRates.params[name] = 1.0f;
+            }
+    }
+    k.op = compileDiffusion(unitRates);
+    if (session.integrator == Integrator::SemiImplicit)
+        for (int m : k.mappedRate)
+            if (m >= 0)
+                throw InputError("the semi_implicit integrator needs constant diffusion rates; "
+                                 "a param_maps entry varies one");
     k.integrator = session.integrator;
     k.jacobiSweeps = session.jacobiSweeps;
     if (k.integrator == Integrator::SemiImplicit) {

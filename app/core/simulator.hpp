@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,18 @@ struct StepConstants {
     std::array<float, 4> omega = {};
     double contraction = 0; // worst chemical's residual factor per sweep
 
+    // Parameters that vary per cell (the session's param_maps), at most 4:
+    // their indices in `params` and one plane of values per cell each.
+    std::vector<int> mappedParams;
+    State paramMaps;
+    // Per chemical: the mapped parameter (index into mappedParams) that is its
+    // diffusion rate, or -1. The operator is then compiled at rate 1 and the
+    // backends multiply its result by the cell's rate.
+    std::array<int, 4> mappedRate = {-1, -1, -1, -1};
+
+    bool hasParamMaps() const { return !mappedParams.empty(); }
+
+    // Throws InputError for combinations the backends cannot run.
     static StepConstants fromSession(const Session& session);
 };
 
@@ -43,6 +56,9 @@ public:
     virtual void setState(const State& state) = 0;
     virtual State state() const = 0;
     virtual void run(int steps) = 0;
+    // Cells marked 1 keep their values exactly (still feeding their
+    // neighbours' diffusion); empty: none. Turk's cascades.
+    virtual void setFrozen(const std::vector<std::uint8_t>& frozen);
 };
 
 } // namespace morphogen

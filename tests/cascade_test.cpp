@@ -1,0 +1,76 @@
+// Cascades (Turk's frozen cells, stages) and per-cell parameter maps on the
+// CPU reference backend; cascade_gltest runs the same checks on the GPU.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cascade_checks.hpp"
+#include "core/cpu_simulator.hpp"
+#include "core/errors.hpp"
+#include "core/param_map.hpp"
+#include "core/session.hpp"
+
+using namespace morphogen;
+
+namespace {
+SimulatorFactory cpu() {
+    return [](const Session& s) { return std::make_unique<CpuSimulator>(s); };
+}
+} // namespace
+
+TEST(Cascade, FrozenCellsKeepTheirValuesBitForBit) { test::checkFrozenCellsExact(cpu()); }
+
+TEST(Cascade, LeopardResetsFrozenCells) { test::checkLeopardReset(cpu()); }
+
+TEST(ParamMaps, TheParameterAtACellIsTheMapsValue) { test::checkParamMapReadBack(cpu()); }
+
+TEST(ParamMaps, LinearFieldsRunAlongTheirAxes) {
+    ParamMapSpec x{ParamMapSpec::Field::LinearX, 0.01f, 0.09f};
+    const std::vector<float> vx = evaluateParamMap(x, 9, 5, 1, "");
+    EXPECT_FLOAT_EQ(vx[0], 0.01f);
+    EXPECT_FLOAT_EQ(vx[8], 0.09f);
+    EXPECT_FLOAT_EQ(vx[4 * 9 + 4], 0.05f); // constant down each column
+    ParamMapSpec y{ParamMapSpec::Field::LinearY, 0.0f, 1.0f};
+    const std::vector<float> vy = evaluateParamMap(y, 3, 5, 1, "");
+    EXPECT_FLOAT_EQ(vy[4 * 3], 0.0f); // bottom row: the axis' minimum
+    EXPECT_FLOAT_EQ(vy[0], 1.0f);     // top row: its maximum
+    ParamMapSpec noise{ParamMapSpec::Field::Noise, 2.0f, 3.0f};
+    noise.scale = 4;
+    for (float v : evaluateParamMap(noise, 16, 16, 7, "")) {
+        EXPECT_GE(v, 2.0f);
+        EXPECT_LE(v, 3.0f);
+    }
+}
+
+TEST(Cascade, BrokenStagesAndMapsAreNamed) {
+    auto errorFor = [](const char* text) -> std::string {
+        try {
+            sessionFromJson(nlohmann::json::parse(text), "cascade.json");
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_NE(errorFor(R"({"model": "turing_turk", "stages": []})").find("non-empty array"),
+              std::string::npos);
+    EXPECT_NE(errorFor(R"({"model": "turing_turk", "stages": [{"freeze": {"chemical": "q"}}]})")
+                  .find("'stages[0].freeze.chemical' is 'q'"),
+              std::string::npos);
+    EXPECT_NE(errorFor(R"({"model": "turing_turk", "stages": [{"params": {"z": 1}}]})")
+                  .find("'stages[0].params.z' is not a parameter"),
+              std::string::npos);
+    EXPECT_NE(errorFor(R"({"model": "gray_scott", "param_maps": {"F": {"field": "wave"}}})")
+                  .find("accepted: linear_x"),
+              std::string::npos);
+    EXPECT_NE(errorFor(R"({"model": "gray_scott", "param_maps": {"F": {"range": [0, 9]}}})")
+                  .find("'param_maps.F.range[1]' is 9"),
+              std::string::npos);
+    EXPECT_NE(errorFor(R"({"model": "gray_scott", "param_maps": {"F": {"range": [0, 0.1]}},
+                           "stages": [{"params": {"F": 0.05}}]})")
+                  .find("which param_maps sets per cell"),
+              std::string::npos);
+    const Session cheetah = loadPreset("turk_cheetah");
+    ASSERT_EQ(cheetah.stages.size(), 2u);
+    EXPECT_EQ(cheetah.steps, cheetah.stages[0].steps + cheetah.stages[1].steps);
+    EXPECT_EQ(sessionToJson(sessionFromJson(sessionToJson(cheetah), "x")), sessionToJson(cheetah));
+}
