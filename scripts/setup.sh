@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 
 packages=(
   cmake ninja-build g++ pkg-config python3 python3-glad
-  libglfw3-dev libglm-dev libosmesa6-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
+  libglfw3-dev libglm-dev libosmesa6-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0
+  libgl1-mesa-dri
   libopenimageio-dev libtinygltf-dev libstb-dev libeigen3-dev nlohmann-json3-dev
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev libmeshoptimizer-dev
 )
