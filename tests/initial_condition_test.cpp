@@ -74,3 +74,28 @@ TEST(InitialCondition, TurkBetaIsMeanPlusMinusNoise) {
     }
     EXPECT_NEAR(sum / double(st.cellCount()), mean, 0.1);
 }
+
+TEST(InitialCondition, JitteredGridPlacesOneDiscPerDiamondLatticePoint) {
+    Session s = test::smallSession("gs_coral", 64, 0);
+    s.init = InitialCondition{};
+    s.init.type = InitialCondition::Type::JitteredGrid;
+    s.init.base = {{"u", 0.0f}};
+    s.init.inside = {{"u", 1.0f}};
+    s.init.spacing = 16.0f;
+    s.init.spotRadius = 1.0f; // a plus sign of 5 cells
+    s.init.jitter = 0.0f;
+    const State lattice = initialOf(s);
+    // 4 columns x 8 rows (rows spacing / 2 apart): 32 discs of 5 cells.
+    double marked = 0;
+    for (std::size_t i = 0; i < lattice.cellCount(); ++i)
+        marked += lattice.plane(0)[i];
+    EXPECT_EQ(marked, 32 * 5);
+    // Every other row is shifted by half a spacing: a diamond lattice.
+    EXPECT_EQ(lattice.at(0, 0, 4), 1.0f);
+    EXPECT_EQ(lattice.at(0, 8, 12), 1.0f);
+    EXPECT_EQ(lattice.at(0, 8, 4), 0.0f);
+    s.init.jitter = 0.3f;
+    const State jittered = initialOf(s);
+    EXPECT_FALSE(jittered == lattice);
+    EXPECT_TRUE(jittered == initialOf(s)); // same seed, same jitter
+}

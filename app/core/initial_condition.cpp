@@ -1,6 +1,9 @@
 #include "core/initial_condition.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "core/random.hpp"
 #include "core/reaction_model.hpp"
@@ -15,6 +18,8 @@ std::string toString(InitialCondition::Type type) {
         return "centre_square";
     case InitialCondition::Type::SeedSpots:
         return "seed_spots";
+    case InitialCondition::Type::JitteredGrid:
+        return "jittered_grid";
     }
     return "noise";
 }
@@ -41,13 +46,32 @@ State makeInitialState(const InitialCondition& init, const ReactionModel& model,
         for (int y = y0; y < y0 + side; ++y)
             for (int x = x0; x < x0 + side; ++x)
                 marked[std::size_t(y) * width + x] = 1;
-    } else if (init.type == InitialCondition::Type::SeedSpots) {
+    } else if (init.type == InitialCondition::Type::SeedSpots ||
+               init.type == InitialCondition::Type::JitteredGrid) {
+        // Spot centres: random, or a diamond lattice (rows spacing/2 apart,
+        // every other row shifted by half a spacing) displaced by the jitter.
+        std::vector<std::pair<double, double>> centres;
+        if (init.type == InitialCondition::Type::SeedSpots) {
+            for (int s = 0; s < init.spotCount; ++s)
+                centres.emplace_back(uniform01(seed, 2000, 2 * s) * width,
+                                     uniform01(seed, 2000, 2 * s + 1) * height);
+        } else {
+            const double step = std::max(2.0f, init.spacing);
+            const int rows = std::max(1, int(std::lround(2.0 * height / step)));
+            const int columns = std::max(1, int(std::lround(width / step)));
+            for (int j = 0; j < rows; ++j)
+                for (int i = 0; i < columns; ++i) {
+                    const std::uint64_t k = std::uint64_t(j) * columns + i;
+                    const double dx = init.jitter * step * uniformSigned(seed, 2001, 2 * k);
+                    const double dy = init.jitter * step * uniformSigned(seed, 2001, 2 * k + 1);
+                    centres.emplace_back((i + 0.5 * (j % 2)) * width / double(columns) + dx,
+                                         (j + 0.5) * height / double(rows) + dy);
+                }
+        }
         const float r = init.spotRadius;
         const int reach = int(std::ceil(r));
-        for (int s = 0; s < init.spotCount; ++s) {
-            // Streams 2000+ are the spot centres, apart from the per-cell noise.
-            const int cx = int(uniform01(seed, 2000, 2 * s) * width);
-            const int cy = int(uniform01(seed, 2000, 2 * s + 1) * height);
+        for (const auto& [fx, fy] : centres) {
+            const int cx = int(std::floor(fx)), cy = int(std::floor(fy));
             for (int dy = -reach; dy <= reach; ++dy)
                 for (int dx = -reach; dx <= reach; ++dx) {
                     if (float(dx * dx + dy * dy) > r * r)

@@ -11,17 +11,20 @@ namespace morphogen {
 class ReactionModel;
 
 // How the chemicals start. Every cell gets base[c] + U(-noise[c], noise[c]);
-// then, by type, a centred square (McGraw's Gray-Scott start) or random seed
-// spots get `inside[c]` (plus the same noise). Chemicals not named default to 0.
+// then, by type, a centred square (McGraw's Gray-Scott start), random seed
+// spots or discs on a jittered diamond lattice (Witkin-Kass's giraffe start)
+// get `inside[c]` (plus the same noise). Chemicals not named default to 0.
 struct InitialCondition {
-    enum class Type { Noise, CentreSquare, SeedSpots };
+    enum class Type { Noise, CentreSquare, SeedSpots, JitteredGrid };
     Type type = Type::Noise;
     std::map<std::string, float> base;
     std::map<std::string, float> noise;
     std::map<std::string, float> inside;
     float squareFraction = 0.1f; // CentreSquare: side as a fraction of the grid's
     int spotCount = 10;          // SeedSpots
-    float spotRadius = 3.0f;     // SeedSpots, in cells
+    float spotRadius = 3.0f;     // SeedSpots and JitteredGrid, in cells
+    float spacing = 16.0f;       // JitteredGrid: lattice spacing in cells
+    float jitter = 0.25f;        // JitteredGrid: displacement, as a fraction of the spacing
 };
 
 std::string toString(InitialCondition::Type type);

@@ -80,8 +80,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
     top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
                        "integrator", "jacobi_sweeps", "schedule", "stages", "param_maps", "dt",
-                       "steps", "seed", "init",
-                       "colormap"});
+                       "steps", "seed", "init", "colormap"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");
@@ -182,7 +181,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
         for (const Stage& stage : s.stages)
             for (const auto& [name, value] : stage.params)
                 if (s.paramMaps.count(name))
-                    top.failField("stages", "change '" + name + "', which param_maps sets per cell");
+                    top.failField("stages",
+                                  "change '" + name + "', which param_maps sets per cell");
     }
 
     // A session's "init" replaces the model's default start whole: fields it
@@ -191,7 +191,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
     if (const json* init = top.find("init")) {
         s.init = InitialCondition{};
         FieldReader reader(*init, source, "init");
-        reader.rejectUnknown({"type", "base", "noise", "inside", "fraction", "count", "radius"});
+        reader.rejectUnknown({"type", "base", "noise", "inside", "fraction", "count", "radius",
+                              "spacing", "jitter"});
         const std::string type = reader.string("type", toString(s.init.type));
         if (type == "noise")
             s.init.type = InitialCondition::Type::Noise;
@@ -199,9 +200,12 @@ Session sessionFromJson(const json& root, const std::string& source) {
             s.init.type = InitialCondition::Type::CentreSquare;
         else if (type == "seed_spots")
             s.init.type = InitialCondition::Type::SeedSpots;
+        else if (type == "jittered_grid")
+            s.init.type = InitialCondition::Type::JitteredGrid;
         else
-            reader.failField("type",
-                             "is '" + type + "', accepted: noise, centre_square, seed_spots");
+            reader.failField("type", "is '" + type +
+                                         "', accepted: noise, centre_square, seed_spots, "
+                                         "jittered_grid");
         if (reader.find("base"))
             s.init.base = chemicalValues(reader, "base", *model);
         if (reader.find("noise"))
@@ -211,6 +215,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
         s.init.squareFraction = float(reader.number("fraction", s.init.squareFraction, 0.0, 1.0));
         s.init.spotCount = int(reader.integer("count", s.init.spotCount, 0, 100000));
         s.init.spotRadius = float(reader.number("radius", s.init.spotRadius, 0.0, 10000.0));
+        s.init.spacing = float(reader.number("spacing", s.init.spacing, 2.0, 100000.0));
+        s.init.jitter = float(reader.number("jitter", s.init.jitter, 0.0, 1.0));
     }
 
     if (const json* cm = top.find("colormap")) {
@@ -263,6 +269,11 @@ json sessionToJson(const Session& s) {
         init["fraction"] = s.init.squareFraction;
     if (s.init.type == InitialCondition::Type::SeedSpots) {
         init["count"] = s.init.spotCount;
+        init["radius"] = s.init.spotRadius;
+    }
+    if (s.init.type == InitialCondition::Type::JitteredGrid) {
+        init["spacing"] = s.init.spacing;
+        init["jitter"] = s.init.jitter;
         init["radius"] = s.init.spotRadius;
     }
     j["init"] = init;
