@@ -146,6 +146,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         defines.push_back("TENSOR_MAP");
         break;
     }
+    if (m_k.tiled())
+        defines.push_back("TILES");
     if (pass)
         defines.push_back(pass);
     if (!m_frozenMask.empty())
@@ -165,6 +167,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         glUniform1f(program.uniform(("u_" + model.params()[i].name).c_str()), m_k.params[i]);
     glUniform1i(program.uniform("uParamMap"), 3);
     glUniform1i(program.uniform("uFrozen"), 4);
+    if (m_k.tiled())
+        glUniform2i(program.uniform("uTile"), m_k.tile[0], m_k.tile[1]);
 
     if (op.form == Form::Kernel3 || op.form == Form::Kernel5) {
         // One vec4 per tap, one component per chemical.

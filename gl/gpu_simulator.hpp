@@ -33,8 +33,8 @@ GLenum stateFormat(int chemicals);
 // step program is assembled from glsl/fullscreen.vert, the model's reaction
 // snippet (glsl/models/NAME.glsl) and glsl/step.frag, with the diffusion
 // operator's form as a #define variant; parameters are uniforms and edges are the sampler's wrap
-// mode. run() issues draws only: nothing is read back until state().
-// Needs a current context for its whole life.
+// mode (or, for a Tiles param map, each tile wraps on its own: the TILES variant). run() issues
+// draws only: nothing is read back until state(). Needs a current context for its whole life.
 class GpuSimulator : public Simulator {
 public:
     explicit GpuSimulator(const Session& session);

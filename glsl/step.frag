@@ -8,6 +8,9 @@
 //   KERNEL_3    a 3x3 mask per chemical (constant anisotropic tensor)
 //   KERNEL_5    a 5x5 kernel per chemical (generalized diffusion)
 //   TENSOR_MAP  div(A(x) grad c), A per texel from uMap, conservative form
+// TILES (with any form but TENSOR_MAP) splits the grid into uTile-sized tiles,
+// each periodic on its own: neighbours wrap inside the cell's tile, so tiles
+// exchange nothing (a parameter sweep batched into one simulation).
 // The integrator is a second variant: (none) explicit Euler; RHS_PASS and
 // JACOBI_PASS the two passes of a semi-implicit step.
 // react() comes from the model's snippet, compiled in front of this file.
@@ -40,7 +43,19 @@ vec4 react(vec4 c);
 void loadParams(vec2 uv); // generated in C++: p_<name> from uniforms or uParamMap
 vec4 rateScale();         // generated: per-chemical diffusion rate of this cell, or 1
 
+#ifdef TILES
+uniform ivec2 uTile; // cells per tile
+// The neighbour (dx, dy) of this fragment's cell, wrapped inside its tile.
+// |dx|, |dy| <= 2 < uTile, so adding uTile keeps the operands of % positive.
+ivec2 tileNeighbour(int dx, int dy) {
+    ivec2 cell = ivec2(gl_FragCoord.xy);
+    ivec2 local = cell % uTile;
+    return cell - local + (local + ivec2(dx, dy) + uTile) % uTile;
+}
+#define AT(dx, dy) texelFetch(uState, tileNeighbour(dx, dy), 0)
+#else
 #define AT(dx, dy) textureOffset(uState, uv, ivec2(dx, dy))
+#endif
 #define TAP(dx, dy) sum += uKernel[(dy + 2) * 5 + dx + 2] * AT(dx, dy)
 
 #ifdef TENSOR_MAP
@@ -64,6 +79,9 @@ vec4 diffusion(vec2 uv, vec4 c) {
 #endif
     return sum;
 #elif defined(TENSOR_MAP)
+#ifdef TILES
+#error "TILES does not support TENSOR_MAP"
+#endif
     vec4 l = AT(-1, 0), r = AT(1, 0), d = AT(0, -1), u = AT(0, 1);
     vec4 mc = texture(uMap, uv);
     vec4 ml = textureOffset(uMap, uv, ivec2(-1, 0)), mr = textureOffset(uMap, uv, ivec2(1, 0));

@@ -164,3 +164,18 @@ run(2 "expected PARAM:MIN:MAX" map --model gray_scott --x k --y F:0.01:0.09 --ou
 run(2 "is not a parameter of gray_scott" map --model gray_scott --x q:0:1 --y F:0.01:0.09 --out bad.png)
 run(2 "must sweep different parameters" map --model gray_scott --x F:0.01:0.02 --y F:0.01:0.09 --out bad.png)
 run(2 "need MIN < MAX" map --model gray_scott --x F:0.05:0.01 --y k:0.04:0.07 --out bad.png)
+
+# A parameter sweep: a contact sheet and per-tile stats, one CSV row per tile.
+run(0 "" sweep --model gray_scott --x k:0.045:0.07 --y F:0.01:0.09 --grid 3x3 --tile 16 --steps 20 --backend cpu --out sweep)
+foreach(f sheet.png stats.csv stats.json session.json)
+  if(NOT EXISTS "${WORK}/sweep/${f}")
+    message(SEND_ERROR "sweep did not write ${f}")
+  endif()
+endforeach()
+file(STRINGS "${WORK}/sweep/stats.csv" sweep_rows)
+list(LENGTH sweep_rows sweep_lines)
+if(NOT sweep_lines EQUAL 10)
+  message(SEND_ERROR "sweep stats.csv has ${sweep_lines} lines, want a header and 9 tiles")
+endif()
+run(2 "--grid '3by3'" sweep --model gray_scott --x k:0.045:0.07 --y F:0.01:0.09 --grid 3by3 --out sweep_bad)
+run(2 "--tile 4" sweep --model gray_scott --x k:0.045:0.07 --y F:0.01:0.09 --grid 3x3 --tile 4 --out sweep_bad)

@@ -13,5 +13,6 @@ void addBenchCommand(CLI::App& app);
 void addPropagatorCommand(CLI::App& app);
 void addGalleryCommand(CLI::App& app);
 void addMapCommand(CLI::App& app);
+void addSweepCommand(CLI::App& app);
 
 } // namespace morphogen::cli

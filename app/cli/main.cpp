@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     morphogen::cli::addPropagatorCommand(app);
     morphogen::cli::addGalleryCommand(app);
     morphogen::cli::addMapCommand(app);
+    morphogen::cli::addSweepCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -1,5 +1,7 @@
 #include "core/cpu_simulator.hpp"
 
+#include "core/errors.hpp"
+
 #if defined(__SSE2__)
 #include <xmmintrin.h>
 #endif
@@ -147,6 +149,11 @@ CpuSimulator::CpuSimulator(const Session& session)
     : m_model(session.reactionModel()), m_k(StepConstants::fromSession(session)),
       m_current(session.width, session.height, m_k.chemicals),
       m_next(session.width, session.height, m_k.chemicals) {
+    // Its kernels wrap at the grid's edges, not at tile edges: sweeps run
+    // each tile on its own CPU simulator instead (sweep.hpp: runTile).
+    if (m_k.tiled())
+        throw InputError("the cpu backend runs sweep tiles one by one, not a batched session; "
+                         "use --backend gpu for a batched sweep session");
     m_explicitStep = fusedExplicitStep(m_model, m_k);
     m_rhsPass = fusedRhsPass(m_model, m_k);
     m_sweep = fusedSweep(m_k);

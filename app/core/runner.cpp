@@ -9,6 +9,7 @@
 #include "core/initial_condition.hpp"
 #include "core/cascade.hpp"
 #include "core/resample.hpp"
+#include "core/sweep.hpp"
 #include "core/stability.hpp"
 
 namespace morphogen {
@@ -96,8 +97,10 @@ RunResult runSession(const Session& session, const SimulatorFactory& makeSimulat
     for (std::size_t i = 0; i < segments.size(); ++i) {
         const Session& part = segments[i].session;
         if (i == 0)
-            state = makeInitialState(part.init, model, part.params, part.width, part.height,
-                                     part.seed);
+            // A batched sweep starts every tile from its own initial state.
+            state = isBatchedSweep(part) ? batchedInitialState(part)
+                                         : makeInitialState(part.init, model, part.params,
+                                                            part.width, part.height, part.seed);
         else if (state.width() != part.width || state.height() != part.height)
             state = resampleBilinear(state, part.width, part.height, part.edges);
         if (segments[i].freeze)

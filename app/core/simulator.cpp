@@ -32,6 +32,24 @@ StepConstants StepConstants::fromSession(const Session& session) {
         for (std::size_t p = 0; p < model.params().size(); ++p)
             if (model.params()[p].name == name)
                 k.mappedParams.push_back(int(p));
+        if (spec.field == ParamMapSpec::Field::Tiles) {
+            if (spec.tilesX < 1 || spec.tilesY < 1 || session.width % spec.tilesX ||
+                session.height % spec.tilesY ||
+                spec.tileValues.size() != std::size_t(spec.tilesX) * std::size_t(spec.tilesY))
+                throw InputError("param_maps '" + name + "': the tiles must split the " +
+                                 std::to_string(session.width) + " x " +
+                                 std::to_string(session.height) +
+                                 " grid evenly, with one value per tile");
+            const std::array<int, 2> tile = {session.width / spec.tilesX,
+                                             session.height / spec.tilesY};
+            if (k.tiled() && k.tile != tile)
+                throw InputError("param_maps '" + name + "': every tiles map needs the same tiles");
+            if (tile[0] < 4 || tile[1] < 4)
+                throw InputError("param_maps '" + name + "': tiles need at least 4 x 4 cells");
+            if (session.edges != EdgeMode::Periodic)
+                throw InputError("param_maps '" + name + "': tiles need periodic edges");
+            k.tile = tile;
+        }
         const std::vector<float> values =
             evaluateParamMap(spec, session.width, session.height, session.seed, session.baseDir);
         std::copy(values.begin(), values.end(), k.paramMaps.plane(index));
@@ -42,6 +60,10 @@ StepConstants StepConstants::fromSession(const Session& session) {
             }
     }
     k.op = compileDiffusion(unitRates);
+    // Its map texture would need tile-local fetches too; sweeps of tensor
+    // fields are left to one-by-one runs.
+    if (k.tiled() && k.op.form == DiffusionOperator::Form::TensorMap)
+        throw InputError("tiled param_maps do not support a diffusion tensor map");
     if (session.integrator == Integrator::SemiImplicit)
         for (int m : k.mappedRate)
             if (m >= 0)
@@ -67,12 +89,9 @@ StepConstants StepConstants::fromSession(const Session& session) {
     for (int c = 0; c < 4; ++c) {
         if (c < k.chemicals) {
             const ChemicalSpec& spec = model.chemicals()[std::size_t(c)];
-            // Scaled to the level's grid spacing, as the operator's rates are.
-            k.diffusion[c] = k.op.rates[std::size_t(c)];
             k.clampMin[c] = spec.clampMin;
             k.clampMax[c] = spec.clampMax;
         } else {
-            k.diffusion[c] = 0.0f;
             k.clampMin[c] = -std::numeric_limits<float>::infinity();
             k.clampMax[c] = std::numeric_limits<float>::infinity();
         }

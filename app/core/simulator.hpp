@@ -19,7 +19,6 @@ namespace morphogen {
 struct StepConstants {
     int chemicals = 0;
     float dt = 1.0f;
-    std::array<float, 4> diffusion = {};
     std::array<float, 4> clampMin = {};
     std::array<float, 4> clampMax = {};
     std::vector<float> params; // model declaration order
@@ -42,7 +41,13 @@ struct StepConstants {
     // backends multiply its result by the cell's rate.
     std::array<int, 4> mappedRate = {-1, -1, -1, -1};
 
+    // Cells per tile when a param map is a Tiles field, else {0, 0}: the grid
+    // is then independent tiles, each periodic on its own (a batched sweep).
+    // Only the GPU step implements this; the CPU runs such tiles one by one.
+    std::array<int, 2> tile = {0, 0};
+
     bool hasParamMaps() const { return !mappedParams.empty(); }
+    bool tiled() const { return tile[0] > 0; }
 
     // Throws InputError for combinations the backends cannot run.
     static StepConstants fromSession(const Session& session);

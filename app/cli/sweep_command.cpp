@@ -1,0 +1,381 @@
+// morphogen sweep: a grid of independent simulations, one per pair of
+// parameter values, with a labelled contact sheet and per-tile pattern stats.
+// On the GPU the whole grid is one simulation of side-by-side tiles, each
+// periodic on its own (the TILES step variant), so one draw per step advances
+// every tile; on the CPU the tiles run one by one.
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/backend.hpp"
+#include "cli/commands.hpp"
+#include "cli/plot_text.hpp"
+#include "cli/progress.hpp"
+#include "cli/render_output.hpp"
+#include "core/colormap.hpp"
+#include "core/errors.hpp"
+#include "core/image_io.hpp"
+#include "core/pattern_classifier.hpp"
+#include "core/sweep.hpp"
+
+namespace morphogen::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct SweepFlags {
+    std::string model;
+    std::string preset;
+    std::string x, y;
+    std::string grid;
+    std::string out;
+    int tile = 128;
+    int steps = -1;
+    long long seed = -1;
+    std::string backend = "auto";
+    std::string context;
+    bool compare = false;
+};
+
+SweepAxis parseAxis(const std::string& flag, const std::string& text, const ReactionModel& model) {
+    std::stringstream in(text);
+    std::string name, lo, hi;
+    std::getline(in, name, ':');
+    std::getline(in, lo, ':');
+    std::getline(in, hi, ':');
+    char* end1 = nullptr;
+    char* end2 = nullptr;
+    SweepAxis axis{name, std::strtof(lo.c_str(), &end1), std::strtof(hi.c_str(), &end2)};
+    if (name.empty() || lo.empty() || hi.empty() || *end1 || *end2 || !in.eof())
+        throw InputError(flag + " '" + text + "': expected PARAM:MIN:MAX, e.g. F:0.01:0.1");
+    const ParamSpec* spec = model.param(name);
+    if (!spec)
+        throw InputError(flag + " '" + text + "': '" + name + "' is not a parameter of " +
+                         model.name());
+    if (axis.min < spec->min || axis.max > spec->max || !(axis.min < axis.max))
+        throw InputError(flag + " '" + text + "': need MIN < MAX within " + name + "'s range [" +
+                         std::to_string(spec->min) + ", " + std::to_string(spec->max) + "]");
+    return axis;
+}
+
+Session baseSession(const SweepFlags& f) {
+    if (f.model.empty() == f.preset.empty())
+        throw InputError("give one of --model NAME or --preset NAME");
+    if (!f.preset.empty())
+        return loadPreset(f.preset);
+    const ReactionModel* model = findModel(f.model);
+    if (!model) {
+        std::string names;
+        for (const ReactionModel* m : allModels())
+            names += (names.empty() ? "" : ", ") + m->name();
+        throw InputError("--model '" + f.model + "' is unknown (known: " + names + ")");
+    }
+    Session s;
+    s.name = "sweep";
+    s.model = model->name();
+    for (const ParamSpec& p : model->params())
+        s.params[p.name] = p.defaultValue;
+    s.dt = model->defaultDt();
+    s.init = model->defaultInit();
+    s.steps = 10000;
+    s.colormap.name = "viridis";
+    return s;
+}
+
+void parseGrid(const std::string& text, int& columns, int& rows) {
+    std::smatch m;
+    if (!std::regex_match(text, m, std::regex("([0-9]{1,4})x([0-9]{1,4})")))
+        throw InputError("--grid '" + text + "': expected COLUMNSxROWS, e.g. 16x16");
+    columns = std::stoi(m[1]);
+    rows = std::stoi(m[2]);
+    if (columns < 1 || rows < 1)
+        throw InputError("--grid '" + text + "': needs at least one column and one row");
+}
+
+std::string formatValue(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.4g", v);
+    return buffer;
+}
+
+struct TileResult {
+    int column = 0, row = 0;
+    float x = 0, y = 0;
+    PatternStats stats;
+    PatternClass cls = PatternClass::Uniform;
+};
+
+// Colour-mapped tiles with a gap, a value label under every column and left
+// of every row (thinned out where they would overlap), the parameter names
+// and a title.
+void writeSheet(const std::string& path, const SweepSpec& spec, const std::vector<State>& tiles,
+                int steps) {
+    const ReactionModel& model = spec.base.reactionModel();
+    const int chemical = colormapChemical(spec.base.colormap, model);
+    // Small tiles are enlarged so that the sheet stays readable.
+    const int zoom = std::max(1, (48 + spec.tile - 1) / spec.tile);
+    const int side = spec.tile * zoom, gap = 2, pitch = side + gap;
+    const int left = 70, top = 28, bottom = 46, right = 16;
+    const int plotW = spec.columns * pitch - gap, plotH = spec.rows * pitch - gap;
+    const std::string title = model.name() + ": " + spec.x.param + " (columns) vs " + spec.y.param +
+                              " (rows), " + std::to_string(steps) + " steps, " +
+                              std::to_string(spec.tile) + " cells per tile";
+    // Wide enough for the title too, which a narrow grid would clip.
+    Canvas canvas(std::max(left + plotW + right, left + textWidth(title) + right),
+                  top + plotH + bottom, 1.0f);
+    for (int row = 0; row < spec.rows; ++row)
+        for (int column = 0; column < spec.columns; ++column) {
+            const std::vector<float> rgb = applyColormap(
+                tiles[std::size_t(row * spec.columns + column)], chemical, spec.base.colormap);
+            std::vector<float> big(std::size_t(side) * side * 3);
+            for (int y = 0; y < side; ++y)
+                for (int x = 0; x < side; ++x)
+                    for (int c = 0; c < 3; ++c)
+                        big[(std::size_t(y) * side + x) * 3 + c] =
+                            rgb[(std::size_t(y / zoom) * spec.tile + x / zoom) * 3 + c];
+            canvas.paste(big, side, side, left + column * pitch,
+                         top + (spec.rows - 1 - row) * pitch);
+        }
+    const float ink[3] = {0.1f, 0.1f, 0.1f};
+    int widest = 0;
+    for (int column = 0; column < spec.columns; ++column)
+        widest = std::max(widest, textWidth(formatValue(sweepValue(spec.x, column, spec.columns))));
+    const int columnStride = std::max(1, (widest + 6 + pitch - 1) / pitch);
+    for (int column = 0; column < spec.columns; column += columnStride) {
+        const std::string label = formatValue(sweepValue(spec.x, column, spec.columns));
+        const int px = left + column * pitch + side / 2;
+        canvas.fillRect(px, top + plotH, px + 1, top + plotH + 4, ink);
+        drawText(canvas, px - textWidth(label) / 2, top + plotH + 6, label, ink);
+    }
+    const int rowStride = std::max(1, (kTextHeight + 2 + pitch - 1) / pitch);
+    for (int row = 0; row < spec.rows; row += rowStride) {
+        const std::string label = formatValue(sweepValue(spec.y, row, spec.rows));
+        const int py = top + (spec.rows - 1 - row) * pitch + side / 2;
+        canvas.fillRect(left - 4, py, left, py + 1, ink);
+        drawText(canvas, left - 6 - textWidth(label), py - kTextHeight / 2, label, ink);
+    }
+    drawText(canvas, left + plotW / 2 - textWidth(spec.x.param) / 2, top + plotH + 26, spec.x.param,
+             ink);
+    drawText(canvas, 6, top + plotH / 2 - kTextHeight / 2, spec.y.param, ink);
+    drawText(canvas, left, 8, title, ink);
+    writeRgbImage(path, canvas.rgb, canvas.width, canvas.height, 8);
+}
+
+void writeStats(const std::filesystem::path& dir, const SweepSpec& spec,
+                const std::vector<TileResult>& results, int steps, const std::string& backend) {
+    std::ofstream csv(dir / "stats.csv");
+    csv << "column,row,x_value,y_value,mean,variance,dominant_wavelength,feature_count,"
+           "orientation_strength,class\n";
+    nlohmann::json tiles = nlohmann::json::array();
+    for (const TileResult& r : results) {
+        const PatternStats& s = r.stats;
+        csv << r.column << ',' << r.row << ',' << formatValue(r.x) << ',' << formatValue(r.y) << ','
+            << s.mean << ',' << s.variance << ',' << s.dominantWavelength << ',' << s.featureCount
+            << ',' << s.orientationStrength << ',' << toString(r.cls) << '\n';
+        tiles.push_back({{"column", r.column},
+                         {"row", r.row},
+                         {"x", r.x},
+                         {"y", r.y},
+                         {"mean", s.mean},
+                         {"variance", s.variance},
+                         {"dominant_wavelength", s.dominantWavelength},
+                         {"feature_count", s.featureCount},
+                         {"orientation_strength", s.orientationStrength},
+                         {"class", toString(r.cls)}});
+    }
+    if (!csv)
+        throw std::runtime_error("cannot write " + (dir / "stats.csv").string());
+    nlohmann::json j = {{"model", spec.base.model},
+                        {"x", {{"param", spec.x.param}, {"min", spec.x.min}, {"max", spec.x.max}}},
+                        {"y", {{"param", spec.y.param}, {"min", spec.y.min}, {"max", spec.y.max}}},
+                        {"grid", {spec.columns, spec.rows}},
+                        {"tile", spec.tile},
+                        {"steps", steps},
+                        {"backend", backend},
+                        {"tiles", tiles}};
+    std::ofstream json(dir / "stats.json");
+    json << j.dump(2) << '\n';
+    if (!json)
+        throw std::runtime_error("cannot write " + (dir / "stats.json").string());
+}
+
+double seconds(Clock::time_point since) {
+    return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+// Runs every tile as its own simulation, row by row; returns the tiles in
+// row-major order, bottom row first.
+std::vector<State> runOneByOne(const Session& batched, const SimulatorFactory& make,
+                               Progress* progress) {
+    const int columns = tileColumns(batched), rows = tileRows(batched);
+    std::vector<State> tiles;
+    for (int row = 0; row < rows; ++row)
+        for (int column = 0; column < columns; ++column) {
+            const Session tile = tileSession(batched, column, row);
+            tiles.push_back(runTile(tile, make));
+            if (progress)
+                progress->update(int(tiles.size()) * batched.steps / (columns * rows));
+        }
+    return tiles;
+}
+
+void sweep(const SweepFlags& f) {
+    SweepSpec spec;
+    spec.base = baseSession(f);
+    const ReactionModel& model = spec.base.reactionModel();
+    spec.x = parseAxis("--x", f.x, model);
+    spec.y = parseAxis("--y", f.y, model);
+    if (spec.x.param == spec.y.param)
+        throw InputError("--x and --y must sweep different parameters");
+    parseGrid(f.grid, spec.columns, spec.rows);
+    if (f.tile < 8 || f.tile > 4096)
+        throw InputError("--tile " + std::to_string(f.tile) + ": accepted are 8..4096 cells");
+    spec.tile = f.tile;
+    if (spec.columns * spec.tile > kMaxGridSide || spec.rows * spec.tile > kMaxGridSide)
+        throw InputError("--grid " + f.grid + " of --tile " + std::to_string(f.tile) + " exceeds " +
+                         std::to_string(kMaxGridSide) + " cells per side");
+    Session& base = spec.base;
+    // As in `map`: seed spots keep their density at the tile's size.
+    if (base.init.type == InitialCondition::Type::SeedSpots && f.preset.empty())
+        base.init.spotCount = std::max(1, int(20.0 * f.tile * f.tile / (256.0 * 256.0)));
+    base.width = base.height = spec.tile;
+    base.schedule.clear();
+    base.stages.clear();
+    base.paramMaps.clear();
+    if (f.steps >= 0)
+        base.steps = f.steps;
+    if (f.seed >= 0)
+        base.seed = std::uint64_t(f.seed);
+    checkColormapName(base.colormap.name);
+
+    // Stability at the corners covers the grid: a rate grows monotonically
+    // along an axis. The smallest dt found applies to every tile.
+    Session batched = batchedSession(spec);
+    for (int row : {0, spec.rows - 1})
+        for (int column : {0, spec.columns - 1}) {
+            Session corner = tileSession(batched, column, row);
+            validateSession(corner, "sweep");
+            checkStability(corner, false);
+            base.dt = std::min(base.dt, corner.dt);
+            batched.dt = base.dt; // warn once, not at every corner
+        }
+    batched = batchedSession(spec);
+
+    const std::filesystem::path dir(f.out);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir))
+        throw InputError("--out '" + f.out + "' cannot be created as a folder");
+    checkWritable((dir / "sheet.png").string());
+
+    Backend backend = makeBackend(parseBackendChoice(f.backend), parseContextFlag(f.context));
+    std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
+    const bool gpu = backend.context != nullptr;
+    const int tileCount = spec.columns * spec.rows;
+
+    Progress progress("sweep " + std::to_string(spec.columns) + "x" + std::to_string(spec.rows) +
+                          " " + spec.x.param + " x " + spec.y.param,
+                      base.steps);
+    const Clock::time_point start = Clock::now();
+    std::vector<State> tiles;
+    if (gpu) {
+        RunOptions options;
+        options.chunk = runChunk(batched);
+        options.progress = [&](int done, int) { progress.update(done); };
+        const State all = runBatched(batched, backend.makeSimulator, options);
+        for (int row = 0; row < spec.rows; ++row)
+            for (int column = 0; column < spec.columns; ++column)
+                tiles.push_back(extractTile(all, column, row, spec.tile));
+    } else {
+        tiles = runOneByOne(batched, backend.makeSimulator, &progress);
+    }
+    const double mainSeconds = seconds(start);
+    progress.finish("done: " + std::to_string(tileCount) + " tiles of " +
+                    std::to_string(base.steps) + " steps");
+
+    if (f.compare) {
+        if (!gpu) {
+            std::printf("cpu backend: the sweep already runs its %d tiles one by one (%.3f s); "
+                        "only the gpu backend batches them\n",
+                        tileCount, mainSeconds);
+        } else {
+            const Clock::time_point again = Clock::now();
+            const std::vector<State> single = runOneByOne(batched, backend.makeSimulator, nullptr);
+            const double singleSeconds = seconds(again);
+            float worst = 0;
+            for (std::size_t t = 0; t < tiles.size(); ++t)
+                for (int c = 0; c < tiles[t].channels(); ++c)
+                    for (std::size_t i = 0; i < tiles[t].cellCount(); ++i)
+                        worst = std::max(worst,
+                                         std::fabs(tiles[t].plane(c)[i] - single[t].plane(c)[i]));
+            std::printf("gpu batched: %.3f s, one by one: %.3f s, one-by-one / batched = %.2f "
+                        "(%d tiles of %d x %d, %d steps; max |difference| %.3g)\n",
+                        mainSeconds, singleSeconds, singleSeconds / mainSeconds, tileCount,
+                        spec.tile, spec.tile, base.steps, double(worst));
+        }
+    }
+
+    const int chemical = colormapChemical(base.colormap, model);
+    std::vector<TileResult> results;
+    for (int row = 0; row < spec.rows; ++row)
+        for (int column = 0; column < spec.columns; ++column) {
+            TileResult r;
+            r.column = column;
+            r.row = row;
+            r.x = sweepValue(spec.x, column, spec.columns);
+            r.y = sweepValue(spec.y, row, spec.rows);
+            r.stats = measurePattern(tiles[std::size_t(row * spec.columns + column)], chemical);
+            r.cls = classifyPattern(r.stats, &model.chemicals()[std::size_t(chemical)]);
+            results.push_back(r);
+        }
+    writeSheet((dir / "sheet.png").string(), spec, tiles, base.steps);
+    writeStats(dir, spec, results, base.steps, gpu ? "gpu" : "cpu");
+    if (gpu) {
+        saveSessionFile(batched, (dir / "session.json").string());
+    } else {
+        // The tiles ran as separate sessions: the shared one plus the grid.
+        nlohmann::json j = sessionToJson(base);
+        j["sweep"] = {{"x", {{"param", spec.x.param}, {"min", spec.x.min}, {"max", spec.x.max}}},
+                      {"y", {{"param", spec.y.param}, {"min", spec.y.min}, {"max", spec.y.max}}},
+                      {"grid", {spec.columns, spec.rows}},
+                      {"tile", spec.tile}};
+        std::ofstream out(dir / "session.json");
+        out << j.dump(2) << '\n';
+        if (!out)
+            throw std::runtime_error("cannot write " + (dir / "session.json").string());
+    }
+    std::printf("%s\n", dir.string().c_str());
+}
+
+} // namespace
+
+void addSweepCommand(CLI::App& app) {
+    auto flags = std::make_shared<SweepFlags>();
+    CLI::App* cmd = app.add_subcommand(
+        "sweep", "A grid of independent simulations over two parameters, with a contact sheet "
+                 "and per-tile pattern stats");
+    cmd->add_option("--model", flags->model, "model whose defaults start every tile");
+    cmd->add_option("--preset", flags->preset, "or a preset to start from");
+    cmd->add_option("--x", flags->x, "PARAM:MIN:MAX across the columns")->required();
+    cmd->add_option("--y", flags->y, "PARAM:MIN:MAX up the rows")->required();
+    cmd->add_option("--grid", flags->grid, "COLUMNSxROWS, e.g. 16x16")->required();
+    cmd->add_option("--out", flags->out, "output folder")->required();
+    cmd->add_option("--tile", flags->tile, "cells per tile side (default 128)");
+    cmd->add_option("--steps", flags->steps, "steps (default: the preset's, or 10000)");
+    cmd->add_option("--seed", flags->seed, "random seed");
+    cmd->add_option("--backend", flags->backend, "auto, gpu or cpu (default auto)");
+    cmd->add_option("--context", flags->context, "GL context: egl or osmesa");
+    cmd->add_flag("--compare-one-by-one", flags->compare,
+                  "also time the same tiles run one by one on the same backend");
+    cmd->callback([flags] { sweep(*flags); });
+}
+
+} // namespace morphogen::cli
