@@ -48,11 +48,13 @@ std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model, const St
                        : "p_" + model.params()[std::size_t(k.mappedParams[std::size_t(m)])].name);
     }
     text += ");\n}\n";
-    return {{"<parameters>", text}, embeddedShader(model.glslPath()),
-            embeddedShader("glsl/step.frag")};
+    return {
+        {"<parameters>", text}, embeddedShader(model.glslPath()), embeddedShader("glsl/step.frag")};
 }
 
-GLenum stateFormat(int chemicals) { return chemicals <= 2 ? GL_RG32F : GL_RGBA32F; }
+GLenum stateFormat(int chemicals) {
+    return chemicals <= 2 ? GL_RG32F : GL_RGBA32F;
+}
 
 PingPong::PingPong(int width, int height, GLenum internalFormat, GLenum wrap) {
     for (std::size_t i = 0; i < 2; ++i) {

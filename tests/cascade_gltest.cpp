@@ -15,8 +15,14 @@ SimulatorFactory gpu() {
 }
 } // namespace
 
-TEST(GpuCascade, FrozenCellsKeepTheirValuesBitForBit) { test::checkFrozenCellsExact(gpu()); }
+TEST(GpuCascade, FrozenCellsKeepTheirValuesBitForBit) {
+    test::checkFrozenCellsExact(gpu());
+}
 
-TEST(GpuCascade, LeopardResetsFrozenCells) { test::checkLeopardReset(gpu()); }
+TEST(GpuCascade, LeopardResetsFrozenCells) {
+    test::checkLeopardReset(gpu());
+}
 
-TEST(GpuParamMaps, TheParameterAtACellIsTheMapsValue) { test::checkParamMapReadBack(gpu()); }
+TEST(GpuParamMaps, TheParameterAtACellIsTheMapsValue) {
+    test::checkParamMapReadBack(gpu());
+}

@@ -18,11 +18,17 @@ SimulatorFactory cpu() {
 }
 } // namespace
 
-TEST(Cascade, FrozenCellsKeepTheirValuesBitForBit) { test::checkFrozenCellsExact(cpu()); }
+TEST(Cascade, FrozenCellsKeepTheirValuesBitForBit) {
+    test::checkFrozenCellsExact(cpu());
+}
 
-TEST(Cascade, LeopardResetsFrozenCells) { test::checkLeopardReset(cpu()); }
+TEST(Cascade, LeopardResetsFrozenCells) {
+    test::checkLeopardReset(cpu());
+}
 
-TEST(ParamMaps, TheParameterAtACellIsTheMapsValue) { test::checkParamMapReadBack(cpu()); }
+TEST(ParamMaps, TheParameterAtACellIsTheMapsValue) {
+    test::checkParamMapReadBack(cpu());
+}
 
 TEST(ParamMaps, LinearFieldsRunAlongTheirAxes) {
     ParamMapSpec x{ParamMapSpec::Field::LinearX, 0.01f, 0.09f};

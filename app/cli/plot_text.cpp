@@ -63,7 +63,8 @@ void drawText(Canvas& canvas, int x, int y, const std::string& text, const float
         for (int j = 0; j < gh; ++j)
             for (int i = 0; i < gw; ++i)
                 canvas.blend(gx0 + i, gy0 + j, colour,
-                             f.pixels[std::size_t(v0 + j) * f.width + std::size_t(u0 + i)] / 255.0f);
+                             f.pixels[std::size_t(v0 + j) * f.width + std::size_t(u0 + i)] /
+                                 255.0f);
         penX += g->AdvanceX;
     }
 }

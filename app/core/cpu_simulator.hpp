@@ -46,7 +46,7 @@ private:
     StepConstants m_k;
     State m_current;
     State m_next;
-    State m_rhs; // SemiImplicit: c + dt f(c) of the step being solved
+    State m_rhs;                              // SemiImplicit: c + dt f(c) of the step being solved
     std::vector<std::uint32_t> m_frozenCells; // indices of frozen cells (cascades)
 };
 

@@ -84,7 +84,8 @@ std::vector<float> evaluateParamMap(const ParamMapSpec& spec, int width, int hei
                     v = height > 1 ? double(height - 1 - y) / (height - 1) : 0.0;
                     break;
                 case ParamMapSpec::Field::Radial:
-                    v = std::hypot(x + 0.5 - spec.centreX * width, y + 0.5 - spec.centreY * height) /
+                    v = std::hypot(x + 0.5 - spec.centreX * width,
+                                   y + 0.5 - spec.centreY * height) /
                         halfDiagonal;
                     break;
                 case ParamMapSpec::Field::Noise:

@@ -5,12 +5,12 @@
 #include <optional>
 #include <sstream>
 
+#include "core/cascade.hpp"
 #include "core/errors.hpp"
 #include "core/initial_condition.hpp"
-#include "core/cascade.hpp"
 #include "core/resample.hpp"
-#include "core/sweep.hpp"
 #include "core/stability.hpp"
+#include "core/sweep.hpp"
 
 namespace morphogen {
 

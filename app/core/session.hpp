@@ -7,8 +7,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "core/diffusion_spec.hpp"
 #include "core/cascade.hpp"
+#include "core/diffusion_spec.hpp"
 #include "core/grid_domain.hpp"
 #include "core/initial_condition.hpp"
 #include "core/param_map.hpp"
