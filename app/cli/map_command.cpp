@@ -9,6 +9,7 @@
 
 #include "cli/backend.hpp"
 #include "cli/commands.hpp"
+#include "cli/exploration.hpp"
 #include "cli/plot_text.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
@@ -37,60 +38,10 @@ struct MapFlags {
     std::string colormap;
 };
 
-struct Axis {
-    std::string param;
-    float min = 0, max = 0;
-};
-
-Axis parseAxis(const std::string& flag, const std::string& text, const ReactionModel& model) {
-    std::stringstream in(text);
-    std::string name, lo, hi;
-    std::getline(in, name, ':');
-    std::getline(in, lo, ':');
-    std::getline(in, hi, ':');
-    char* end1 = nullptr;
-    char* end2 = nullptr;
-    Axis axis{name, std::strtof(lo.c_str(), &end1), std::strtof(hi.c_str(), &end2)};
-    if (name.empty() || lo.empty() || hi.empty() || *end1 || *end2 || !in.eof())
-        throw InputError(flag + " '" + text + "': expected PARAM:MIN:MAX, e.g. F:0.01:0.1");
-    const ParamSpec* spec = model.param(name);
-    if (!spec)
-        throw InputError(flag + " '" + text + "': '" + name + "' is not a parameter of " +
-                         model.name());
-    if (axis.min < spec->min || axis.max > spec->max || !(axis.min < axis.max))
-        throw InputError(flag + " '" + text + "': need MIN < MAX within " + name + "'s range [" +
-                         std::to_string(spec->min) + ", " + std::to_string(spec->max) + "]");
-    return axis;
-}
-
-Session baseSession(const MapFlags& f) {
-    if (f.model.empty() == f.preset.empty())
-        throw InputError("give one of --model NAME or --preset NAME");
-    if (!f.preset.empty())
-        return loadPreset(f.preset);
-    const ReactionModel* model = findModel(f.model);
-    if (!model) {
-        std::string names;
-        for (const ReactionModel* m : allModels())
-            names += (names.empty() ? "" : ", ") + m->name();
-        throw InputError("--model '" + f.model + "' is unknown (known: " + names + ")");
-    }
-    Session s;
-    s.name = "map";
-    s.model = model->name();
-    for (const ParamSpec& p : model->params())
-        s.params[p.name] = p.defaultValue;
-    s.dt = model->defaultDt();
-    s.init = model->defaultInit();
-    s.steps = 10000;
-    s.colormap.name = "viridis";
-    return s;
-}
-
 void map(const MapFlags& f) {
-    Session s = baseSession(f);
+    Session s = explorationBase(f.model, f.preset, "map");
     const ReactionModel& model = s.reactionModel();
-    const Axis x = parseAxis("--x", f.x, model), y = parseAxis("--y", f.y, model);
+    const SweepAxis x = parseAxis("--x", f.x, model), y = parseAxis("--y", f.y, model);
     if (x.param == y.param)
         throw InputError("--x and --y must sweep different parameters");
     if (f.size < 16 || f.size > kMaxGridSide)

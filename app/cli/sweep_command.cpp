@@ -16,6 +16,7 @@
 
 #include "cli/backend.hpp"
 #include "cli/commands.hpp"
+#include "cli/exploration.hpp"
 #include "cli/plot_text.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
@@ -44,51 +45,6 @@ struct SweepFlags {
     std::string context;
     bool compare = false;
 };
-
-SweepAxis parseAxis(const std::string& flag, const std::string& text, const ReactionModel& model) {
-    std::stringstream in(text);
-    std::string name, lo, hi;
-    std::getline(in, name, ':');
-    std::getline(in, lo, ':');
-    std::getline(in, hi, ':');
-    char* end1 = nullptr;
-    char* end2 = nullptr;
-    SweepAxis axis{name, std::strtof(lo.c_str(), &end1), std::strtof(hi.c_str(), &end2)};
-    if (name.empty() || lo.empty() || hi.empty() || *end1 || *end2 || !in.eof())
-        throw InputError(flag + " '" + text + "': expected PARAM:MIN:MAX, e.g. F:0.01:0.1");
-    const ParamSpec* spec = model.param(name);
-    if (!spec)
-        throw InputError(flag + " '" + text + "': '" + name + "' is not a parameter of " +
-                         model.name());
-    if (axis.min < spec->min || axis.max > spec->max || !(axis.min < axis.max))
-        throw InputError(flag + " '" + text + "': need MIN < MAX within " + name + "'s range [" +
-                         std::to_string(spec->min) + ", " + std::to_string(spec->max) + "]");
-    return axis;
-}
-
-Session baseSession(const SweepFlags& f) {
-    if (f.model.empty() == f.preset.empty())
-        throw InputError("give one of --model NAME or --preset NAME");
-    if (!f.preset.empty())
-        return loadPreset(f.preset);
-    const ReactionModel* model = findModel(f.model);
-    if (!model) {
-        std::string names;
-        for (const ReactionModel* m : allModels())
-            names += (names.empty() ? "" : ", ") + m->name();
-        throw InputError("--model '" + f.model + "' is unknown (known: " + names + ")");
-    }
-    Session s;
-    s.name = "sweep";
-    s.model = model->name();
-    for (const ParamSpec& p : model->params())
-        s.params[p.name] = p.defaultValue;
-    s.dt = model->defaultDt();
-    s.init = model->defaultInit();
-    s.steps = 10000;
-    s.colormap.name = "viridis";
-    return s;
-}
 
 void parseGrid(const std::string& text, int& columns, int& rows) {
     std::smatch m;
@@ -229,7 +185,7 @@ std::vector<State> runOneByOne(const Session& batched, const SimulatorFactory& m
 
 void sweep(const SweepFlags& f) {
     SweepSpec spec;
-    spec.base = baseSession(f);
+    spec.base = explorationBase(f.model, f.preset, "sweep");
     const ReactionModel& model = spec.base.reactionModel();
     spec.x = parseAxis("--x", f.x, model);
     spec.y = parseAxis("--y", f.y, model);

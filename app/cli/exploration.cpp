@@ -1,0 +1,56 @@
+#include "cli/exploration.hpp"
+
+#include <cstdlib>
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace morphogen::cli {
+
+SweepAxis parseAxis(const std::string& flag, const std::string& text, const ReactionModel& model) {
+    std::stringstream in(text);
+    std::string name, lo, hi;
+    std::getline(in, name, ':');
+    std::getline(in, lo, ':');
+    std::getline(in, hi, ':');
+    char* end1 = nullptr;
+    char* end2 = nullptr;
+    SweepAxis axis{name, std::strtof(lo.c_str(), &end1), std::strtof(hi.c_str(), &end2)};
+    if (name.empty() || lo.empty() || hi.empty() || *end1 || *end2 || !in.eof())
+        throw InputError(flag + " '" + text + "': expected PARAM:MIN:MAX, e.g. F:0.01:0.1");
+    const ParamSpec* spec = model.param(name);
+    if (!spec)
+        throw InputError(flag + " '" + text + "': '" + name + "' is not a parameter of " +
+                         model.name());
+    if (axis.min < spec->min || axis.max > spec->max || !(axis.min < axis.max))
+        throw InputError(flag + " '" + text + "': need MIN < MAX within " + name + "'s range [" +
+                         std::to_string(spec->min) + ", " + std::to_string(spec->max) + "]");
+    return axis;
+}
+
+Session explorationBase(const std::string& modelName, const std::string& preset,
+                        const std::string& name) {
+    if (modelName.empty() == preset.empty())
+        throw InputError("give one of --model NAME or --preset NAME");
+    if (!preset.empty())
+        return loadPreset(preset);
+    const ReactionModel* model = findModel(modelName);
+    if (!model) {
+        std::string names;
+        for (const ReactionModel* m : allModels())
+            names += (names.empty() ? "" : ", ") + m->name();
+        throw InputError("--model '" + modelName + "' is unknown (known: " + names + ")");
+    }
+    Session s;
+    s.name = name;
+    s.model = model->name();
+    for (const ParamSpec& p : model->params())
+        s.params[p.name] = p.defaultValue;
+    s.dt = model->defaultDt();
+    s.init = model->defaultInit();
+    s.steps = 10000;
+    s.colormap.name = "viridis";
+    return s;
+}
+
+} // namespace morphogen::cli
