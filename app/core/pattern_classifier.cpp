@@ -39,13 +39,7 @@ constexpr double kStripesMinElongated = 0.6;
 // seed that has not spread (or a dying pattern).
 constexpr int kMinSpots = 3;
 
-struct Feature {
-    int area = 0;
-    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
-    bool wraps = false;
-};
-
-double featureElongation(const Feature& f) {
+double featureElongation(const PatternFeature& f) {
     if (f.wraps)
         return kWrapElongation;
     const double n = f.area;
@@ -68,7 +62,6 @@ double featureElongation(const Feature& f) {
 
 PatternStats measurePattern(const State& state, int chemical, bool periodic) {
     PatternStats stats;
-    const int w = state.width(), h = state.height();
     const std::size_t cells = state.cellCount();
     const float* p = state.plane(chemical);
     stats.min = stats.max = cells > 0 ? p[0] : 0.0;
@@ -93,74 +86,17 @@ PatternStats measurePattern(const State& state, int chemical, bool periodic) {
     const OrientationStats orientation = orientationStats(state, chemical);
     for (int k = 2; k <= 12; k += 2)
         stats.orientationStrength = std::max(stats.orientationStrength, orientation.moment(k));
-    stats.featureCount = featureCount(state, chemical, periodic);
-
-    // The same minority phase and 4-neighbour regions as featureCount(), with
-    // each cell's position unwrapped across the seams, so a feature's moments
-    // are those of its connected shape; meeting a cell again at another
-    // unwrapped position means the feature closes around the torus.
-    std::size_t above = 0;
-    for (std::size_t i = 0; i < cells; ++i)
-        above += p[i] > stats.mean;
-    const bool countAbove = 2 * above <= cells;
-    auto inFeature = [&](std::size_t i) {
-        return countAbove ? p[i] > stats.mean : p[i] < stats.mean;
-    };
-    std::vector<int> label(cells, -1), ux(cells, 0), uy(cells, 0);
-    std::vector<std::size_t> stack;
-    std::vector<Feature> features;
+    const std::vector<PatternFeature> features = findFeatures(state, chemical, periodic);
+    stats.featureCount = featureCount(features);
     std::size_t minority = 0;
-    for (std::size_t start = 0; start < cells; ++start) {
-        if (label[start] >= 0 || !inFeature(start))
-            continue;
-        const int id = int(features.size());
-        Feature f;
-        label[start] = id;
-        ux[start] = int(start % std::size_t(w));
-        uy[start] = int(start / std::size_t(w));
-        const double ox = ux[start], oy = uy[start]; // moments about the start: small sums
-        stack.assign(1, start);
-        while (!stack.empty()) {
-            const std::size_t i = stack.back();
-            stack.pop_back();
-            ++f.area;
-            const double dx = ux[i] - ox, dy = uy[i] - oy;
-            f.sx += dx;
-            f.sy += dy;
-            f.sxx += dx * dx;
-            f.syy += dy * dy;
-            f.sxy += dx * dy;
-            const int x = int(i % std::size_t(w)), y = int(i / std::size_t(w));
-            const int ddx[4] = {-1, 1, 0, 0}, ddy[4] = {0, 0, -1, 1};
-            for (int k = 0; k < 4; ++k) {
-                int xx = x + ddx[k], yy = y + ddy[k];
-                if (periodic) {
-                    xx = (xx + w) % w;
-                    yy = (yy + h) % h;
-                } else if (xx < 0 || yy < 0 || xx >= w || yy >= h) {
-                    continue;
-                }
-                const std::size_t j = std::size_t(yy) * std::size_t(w) + std::size_t(xx);
-                const int ex = ux[i] + ddx[k], ey = uy[i] + ddy[k];
-                if (label[j] < 0 && inFeature(j)) {
-                    label[j] = id;
-                    ux[j] = ex;
-                    uy[j] = ey;
-                    stack.push_back(j);
-                } else if (label[j] == id && (ux[j] != ex || uy[j] != ey)) {
-                    f.wraps = true;
-                }
-            }
-        }
+    for (const PatternFeature& f : features)
         minority += std::size_t(f.area);
-        features.push_back(f);
-    }
     stats.minorityFraction = double(minority) / double(cells);
 
     double area = 0, weighted = 0, elongated = 0;
     int largest = 0;
-    for (const Feature& f : features) {
-        if (f.area < 3) // noise, as in featureCount()
+    for (const PatternFeature& f : features) {
+        if (f.area < kMinFeatureArea)
             continue;
         const double e = featureElongation(f);
         area += f.area;

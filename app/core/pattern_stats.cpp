@@ -1,5 +1,6 @@
 #include "core/pattern_stats.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <vector>
@@ -122,35 +123,47 @@ OrientationStats orientationStats(const State& state, int chemical, int bins) {
     return stats;
 }
 
-int featureCount(const State& state, int chemical, bool periodic) {
+std::vector<PatternFeature> findFeatures(const State& state, int chemical, bool periodic) {
     const int w = state.width(), h = state.height();
+    const std::size_t cells = state.cellCount();
     const float* p = state.plane(chemical);
     double mean = 0;
-    for (std::size_t i = 0; i < state.cellCount(); ++i)
+    for (std::size_t i = 0; i < cells; ++i)
         mean += p[i];
-    mean /= double(state.cellCount());
+    mean /= double(std::max<std::size_t>(cells, 1));
     std::size_t above = 0;
-    for (std::size_t i = 0; i < state.cellCount(); ++i)
+    for (std::size_t i = 0; i < cells; ++i)
         above += p[i] > mean;
-    const bool countAbove = 2 * above <= state.cellCount();
+    const bool countAbove = 2 * above <= cells;
     auto inFeature = [&](std::size_t i) { return countAbove ? p[i] > mean : p[i] < mean; };
-    std::vector<int> label(state.cellCount(), -1);
+
+    std::vector<int> label(cells, -1), ux(cells, 0), uy(cells, 0);
     std::vector<std::size_t> stack;
-    int count = 0;
-    for (std::size_t start = 0; start < state.cellCount(); ++start) {
+    std::vector<PatternFeature> features;
+    for (std::size_t start = 0; start < cells; ++start) {
         if (label[start] >= 0 || !inFeature(start))
             continue;
-        int size = 0;
-        label[start] = count;
+        const int id = int(features.size());
+        PatternFeature f;
+        label[start] = id;
+        ux[start] = int(start % std::size_t(w));
+        uy[start] = int(start / std::size_t(w));
+        const double ox = ux[start], oy = uy[start]; // moments about the start: small sums
         stack.assign(1, start);
         while (!stack.empty()) {
             const std::size_t i = stack.back();
             stack.pop_back();
-            ++size;
+            ++f.area;
+            const double dx = ux[i] - ox, dy = uy[i] - oy;
+            f.sx += dx;
+            f.sy += dy;
+            f.sxx += dx * dx;
+            f.syy += dy * dy;
+            f.sxy += dx * dy;
             const int x = int(i % std::size_t(w)), y = int(i / std::size_t(w));
-            const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+            const int ddx[4] = {-1, 1, 0, 0}, ddy[4] = {0, 0, -1, 1};
             for (int k = 0; k < 4; ++k) {
-                int xx = nx[k], yy = ny[k];
+                int xx = x + ddx[k], yy = y + ddy[k];
                 if (periodic) {
                     xx = (xx + w) % w;
                     yy = (yy + h) % h;
@@ -158,16 +171,29 @@ int featureCount(const State& state, int chemical, bool periodic) {
                     continue;
                 }
                 const std::size_t j = std::size_t(yy) * std::size_t(w) + std::size_t(xx);
+                const int ex = ux[i] + ddx[k], ey = uy[i] + ddy[k];
                 if (label[j] < 0 && inFeature(j)) {
-                    label[j] = count;
+                    label[j] = id;
+                    ux[j] = ex;
+                    uy[j] = ey;
                     stack.push_back(j);
+                } else if (label[j] == id && (ux[j] != ex || uy[j] != ey)) {
+                    f.wraps = true;
                 }
             }
         }
-        if (size >= 3)
-            ++count;
+        features.push_back(f);
     }
-    return count;
+    return features;
+}
+
+int featureCount(const std::vector<PatternFeature>& features) {
+    return int(std::count_if(features.begin(), features.end(),
+                             [](const PatternFeature& f) { return f.area >= kMinFeatureArea; }));
+}
+
+int featureCount(const State& state, int chemical, bool periodic) {
+    return featureCount(findFeatures(state, chemical, periodic));
 }
 
 } // namespace morphogen

@@ -17,11 +17,25 @@ struct SpectrumStats {
 // Spectrum statistics of one chemical plane (periodic: the grid is one tile).
 SpectrumStats spectrumStats(const State& state, int chemical);
 
-// Connected regions (4-neighbour, wrapping around a periodic grid) of the
+// A connected region (4-neighbour, wrapping around a periodic grid) of the
 // minority phase: cells above the chemical's mean where those are fewer than
-// half, else cells below it. Spots (light or dark) or stripe segments; tiny
-// regions (< 3 cells) are noise and are not counted.
+// half, else cells below it. Spots (light or dark) or stripe segments.
+// Positions are unwrapped across the seams as the region is walked, so the
+// moments (about the region's first cell) describe its connected shape;
+// `wraps` is set when the region closes around the torus (an endless stripe).
+struct PatternFeature {
+    int area = 0;
+    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    bool wraps = false;
+};
+std::vector<PatternFeature> findFeatures(const State& state, int chemical, bool periodic = true);
+
+// Regions of fewer than this many cells are noise, not features.
+constexpr int kMinFeatureArea = 3;
+
+// The number of features of at least kMinFeatureArea cells.
 int featureCount(const State& state, int chemical, bool periodic = true);
+int featureCount(const std::vector<PatternFeature>& features);
 
 // How a pattern's edges are oriented: a magnitude-weighted histogram of the
 // gradient direction over [0, 180) degrees (display convention: counter-
