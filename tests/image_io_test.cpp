@@ -9,6 +9,7 @@
 #include "core/colormap.hpp"
 #include "core/errors.hpp"
 #include "core/image_io.hpp"
+#include "test_support.hpp"
 
 using namespace morphogen;
 namespace fs = std::filesystem;
@@ -16,9 +17,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path workDir() {
-    const fs::path dir = fs::temp_directory_path() / "morphogen_image_io_test";
-    fs::create_directories(dir);
-    return dir;
+    return test::scratchDir("morphogen_image_io_test");
 }
 
 State ramp(int w, int h) {

@@ -10,6 +10,7 @@
 #include "core/errors.hpp"
 #include "core/image_io.hpp"
 #include "core/orientation_field.hpp"
+#include "test_support.hpp"
 
 using namespace morphogen;
 namespace fs = std::filesystem;
@@ -17,9 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path workDir() {
-    const fs::path dir = fs::temp_directory_path() / "morphogen_image_loader_test";
-    fs::create_directories(dir);
-    return dir;
+    return test::scratchDir("morphogen_image_loader_test");
 }
 
 // Vertical stripes: luminance varies along x only.

@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/session.hpp"
+#include "test_support.hpp"
 
 using namespace morphogen;
 using nlohmann::json;
@@ -106,8 +107,7 @@ TEST(Session, BrokenFieldsAreNamed) {
 }
 
 TEST(Session, FilesWithBadJsonOrMissingFilesAreInputErrors) {
-    const auto dir = std::filesystem::temp_directory_path() / "morphogen_session_test";
-    std::filesystem::create_directories(dir);
+    const auto dir = test::scratchDir("morphogen_session_test");
     const std::string bad = (dir / "bad.json").string();
     std::ofstream(bad) << "{\"model\": \"gray_scott\", ";
     try {
@@ -121,8 +121,7 @@ TEST(Session, FilesWithBadJsonOrMissingFilesAreInputErrors) {
 }
 
 TEST(Session, SaveThenLoadReproducesTheSession) {
-    const auto dir = std::filesystem::temp_directory_path() / "morphogen_session_test";
-    std::filesystem::create_directories(dir);
+    const auto dir = test::scratchDir("morphogen_session_test");
     const std::string path = (dir / "saved.json").string();
     Session s = loadPreset("turk_small_spots");
     s.seed = 77;

@@ -24,6 +24,12 @@ float maxAbsDifference(const State& a, const State& b) {
     return worst;
 }
 
+std::filesystem::path scratchDir(const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
 State runCpu(const Session& session) {
     CpuSimulator sim(session);
     sim.setState(makeInitialState(session.init, session.reactionModel(), session.params,

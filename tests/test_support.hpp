@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 #include "core/session.hpp"
@@ -12,6 +13,10 @@ Session smallSession(const std::string& preset, int size, int steps);
 
 // Largest absolute difference over all chemicals.
 float maxAbsDifference(const State& a, const State& b);
+
+// A folder under the system's temporary folder for one test file's files,
+// created if missing.
+std::filesystem::path scratchDir(const std::string& name);
 
 // Runs a session on the CPU backend from its initial condition.
 State runCpu(const Session& session);

@@ -238,7 +238,9 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
         laplacianRow(plane + std::size_t(GridDomain::wrapOrClamp(y - 1, h, edges)) * w,
                      plane + std::size_t(y) * w,
                      plane + std::size_t(GridDomain::wrapOrClamp(y + 1, h, edges)) * w, out, w,
-                     edges, m_k.stencil);
+                     edges,
+                     op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
+                                                                    : Stencil::NinePoint);
 #pragma omp simd
         for (int x = 0; x < w; ++x)
             out[x] = d * out[x];

@@ -7,17 +7,11 @@
 
 namespace morphogen {
 
-void Simulator::setFrozen(const std::vector<std::uint8_t>& frozen) {
-    if (!frozen.empty())
-        throw InputError("the " + backendName() + " backend cannot freeze cells");
-}
-
 StepConstants StepConstants::fromSession(const Session& session) {
     const ReactionModel& model = session.reactionModel();
     StepConstants k;
     k.chemicals = int(model.chemicals().size());
     k.dt = session.dt;
-    k.stencil = session.diffusion.stencil;
     k.domain = session.domain();
     k.params = model.packParams(session.params);
 

@@ -22,7 +22,6 @@ struct StepConstants {
     std::array<float, 4> clampMin = {};
     std::array<float, 4> clampMax = {};
     std::vector<float> params; // model declaration order
-    Stencil stencil = Stencil::FivePoint;
     GridDomain domain;
     DiffusionOperator op;
     Integrator integrator = Integrator::ExplicitEuler;
@@ -63,7 +62,7 @@ public:
     virtual void run(int steps) = 0;
     // Cells marked 1 keep their values exactly (still feeding their
     // neighbours' diffusion); empty: none. Turk's cascades.
-    virtual void setFrozen(const std::vector<std::uint8_t>& frozen);
+    virtual void setFrozen(const std::vector<std::uint8_t>& frozen) = 0;
 };
 
 } // namespace morphogen
