@@ -13,7 +13,8 @@ float finite(float v) {
     return std::isinf(v) ? std::copysign(FLT_MAX, v) : v;
 }
 
-void setVec4(GLint location, const std::array<float, 4>& v) {
+template <std::size_t N> void setVec4(GLint location, const std::array<float, N>& v) {
+    static_assert(N >= 4);
     glUniform4f(location, finite(v[0]), finite(v[1]), finite(v[2]), finite(v[3]));
 }
 

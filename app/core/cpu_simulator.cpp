@@ -264,14 +264,14 @@ void CpuSimulator::stepGeneric() {
 #pragma omp parallel if (threaded(m_current))
     {
         const FlushDenormals flush;
-        std::vector<float> scratch(std::size_t(w) * 2 * 4);
+        std::vector<float> scratch(std::size_t(w) * 2 * std::size_t(nc));
         std::vector<float> params = m_k.params;
-        float* term[4];
+        float* term[kMaxChemicals];
         RowView view;
         view.n = w;
-        for (int c = 0; c < 4; ++c) {
+        for (int c = 0; c < nc; ++c) {
             term[c] = scratch.data() + std::size_t(c) * w;
-            view.dcdt[c] = scratch.data() + std::size_t(4 + c) * w;
+            view.dcdt[c] = scratch.data() + std::size_t(nc + c) * w;
         }
 #pragma omp for schedule(static)
         for (int y = 0; y < h; ++y) {
@@ -329,11 +329,11 @@ void CpuSimulator::rhsGeneric() {
 #pragma omp parallel if (threaded(m_current))
     {
         const FlushDenormals flush;
-        std::vector<float> scratch(std::size_t(w) * 4);
+        std::vector<float> scratch(std::size_t(w) * std::size_t(nc));
         std::vector<float> params = m_k.params;
         RowView view;
         view.n = w;
-        for (int c = 0; c < 4; ++c)
+        for (int c = 0; c < nc; ++c)
             view.dcdt[c] = scratch.data() + std::size_t(c) * w;
 #pragma omp for schedule(static)
         for (int y = 0; y < h; ++y) {

@@ -23,8 +23,9 @@ struct DiffusionOperator {
     };
     Form form = Form::Laplacian5;
     int chemicals = 0;
-    std::array<float, 4> rates = {};     // Laplacian5/9: each chemical's rate
-    std::array<Kernel5, 4> kernels = {}; // Kernel3/5: each chemical's kernel, rate included
+    std::array<float, kMaxChemicals> rates = {}; // Laplacian5/9: each chemical's rate
+    std::array<Kernel5, kMaxChemicals> kernels =
+        {}; // Kernel3/5: each chemical's kernel, rate included
 
     // TensorMap. Per texel: (s, s cos 2theta, s sin 2theta) of the map. Per
     // chemical (m, dc, ds), with m = rate (a1^2 + a2^2) / 2, d = rate (a1^2 - a2^2) / 2,
@@ -32,11 +33,11 @@ struct DiffusionOperator {
     // coordinates (x right, rows down) A_xx = m s + dc C - ds S, A_yy = m s - dc C + ds S,
     // A_xy = -(dc S + ds C), where C = s cos 2theta, S = s sin 2theta.
     State map;
-    std::array<std::array<float, 3>, 4> mapCoefficients = {};
+    std::array<std::array<float, 3>, kMaxChemicals> mapCoefficients = {};
 
     // Generalized: the isotropic damping added so that no Fourier mode grows
     // (0 when none was needed), per chemical; see kernel_symbol.hpp.
-    std::array<double, 4> stabilization = {};
+    std::array<double, kMaxChemicals> stabilization = {};
 };
 
 // Throws InputError for specs that cannot be built (unknown tensor sets, a

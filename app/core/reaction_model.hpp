@@ -38,8 +38,8 @@ using ParamValues = std::map<std::string, float>;
 
 // Pointers to one row of every chemical plane, for the CPU reaction loops.
 struct RowView {
-    const float* c[4] = {};
-    float* dcdt[4] = {};
+    const float* c[kMaxChemicals] = {};
+    float* dcdt[kMaxChemicals] = {};
     int n = 0;
 };
 
@@ -55,9 +55,12 @@ struct RowView {
 // vectorises across cells. models/react_row.hpp turns a Cell into react().
 
 // A reaction model: its chemicals, its parameters and its reaction function,
-// written twice from one description: a GLSL snippet (glsl/models/NAME.glsl,
-// defining `vec4 react(vec4 c)` over uniforms p_<param>) and the C++ Cell
-// above. A gltest proves the two agree.
+// written twice from one description: a GLSL snippet and the C++ Cell above.
+// A gltest proves the two agree. The snippet (glslPath(), compiled after
+// glslDefines()) reads parameters as globals p_<param> and defines
+//   vec4 react(vec4 c)                                          up to 4 chemicals
+//   void react(vec4 c[STATE_TEXTURES], out vec4 dcdt[STATE_TEXTURES])  more
+// where chemical i is component i % 4 of c[i / 4] (one state texture per four).
 class ReactionModel {
 public:
     virtual ~ReactionModel() = default;
@@ -72,7 +75,12 @@ public:
     float defaultDt() const { return m_defaultDt; }
     // The start used when a session names none.
     const InitialCondition& defaultInit() const { return m_defaultInit; }
-    std::string glslPath() const { return "glsl/models/" + m_name + ".glsl"; }
+    std::string glslPath() const {
+        return "glsl/models/" + (m_glslFile.empty() ? m_name : m_glslFile) + ".glsl";
+    }
+    // #defines the snippet is compiled with (one snippet can serve a family of
+    // models, such as Witkin-Kass's 2-, 3- and 5-direction systems).
+    const std::vector<std::string>& glslDefines() const { return m_glslDefines; }
 
     int chemicalIndex(const std::string& name) const; // -1 when absent
     const ParamSpec* param(const std::string& name) const;
@@ -91,6 +99,8 @@ public:
 
 protected:
     std::string m_name;
+    std::string m_glslFile; // empty: m_name
+    std::vector<std::string> m_glslDefines;
     std::string m_description;
     std::vector<ChemicalSpec> m_chemicals;
     std::vector<ParamSpec> m_params;

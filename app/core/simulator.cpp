@@ -80,7 +80,7 @@ StepConstants StepConstants::fromSession(const Session& session) {
             k.contraction = std::max(k.contraction, weight.contraction);
         }
     }
-    for (int c = 0; c < 4; ++c) {
+    for (int c = 0; c < kMaxChemicals; ++c) {
         if (c < k.chemicals) {
             const ChemicalSpec& spec = model.chemicals()[std::size_t(c)];
             k.clampMin[c] = spec.clampMin;

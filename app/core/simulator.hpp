@@ -11,6 +11,14 @@
 
 namespace morphogen {
 
+// -1 for every chemical: no diffusion rate comes from a param map.
+constexpr std::array<int, kMaxChemicals> noMappedRates() {
+    std::array<int, kMaxChemicals> rates{};
+    for (int& r : rates)
+        r = -1;
+    return rates;
+}
+
 // What one step needs, derived once from a session; both backends read the
 // same values so they share step semantics. Explicit Euler:
 //   c' = clamp(c + dt * (react(c) + A c), clampMin, clampMax)
@@ -19,8 +27,8 @@ namespace morphogen {
 struct StepConstants {
     int chemicals = 0;
     float dt = 1.0f;
-    std::array<float, 4> clampMin = {};
-    std::array<float, 4> clampMax = {};
+    std::array<float, kMaxChemicals> clampMin = {};
+    std::array<float, kMaxChemicals> clampMax = {};
     std::vector<float> params; // model declaration order
     GridDomain domain;
     DiffusionOperator op;
@@ -28,7 +36,7 @@ struct StepConstants {
     int jacobiSweeps = 8;
     // SemiImplicit: each chemical's Richardson weight (stability.hpp); a sweep is
     //   x' = clamp(x + omega (rhs - x + dt A x)),  rhs = c + dt f(c).
-    std::array<float, 4> omega = {};
+    std::array<float, kMaxChemicals> omega = {};
     double contraction = 0; // worst chemical's residual factor per sweep
 
     // Parameters that vary per cell (the session's param_maps), at most 4:
@@ -38,7 +46,7 @@ struct StepConstants {
     // Per chemical: the mapped parameter (index into mappedParams) that is its
     // diffusion rate, or -1. The operator is then compiled at rate 1 and the
     // backends multiply its result by the cell's rate.
-    std::array<int, 4> mappedRate = {-1, -1, -1, -1};
+    std::array<int, kMaxChemicals> mappedRate = noMappedRates();
 
     // Cells per tile when a param map is a Tiles field, else {0, 0}: the grid
     // is then independent tiles, each periodic on its own (a batched sweep).

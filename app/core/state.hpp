@@ -6,6 +6,11 @@
 
 namespace morphogen {
 
+// The most chemicals a model may have (both backends size their per-chemical
+// arrays by it): Witkin-Kass's five-direction systems need 10. The GPU packs
+// four chemicals per state texture, so 12 is three textures written at once.
+constexpr int kMaxChemicals = 12;
+
 // Chemical concentrations on a grid, one plane per chemical (structure of
 // arrays: the CPU backend's row loops vectorise over planes).
 class State {
@@ -31,8 +36,11 @@ public:
     float at(int c, int x, int y) const { return plane(c)[std::size_t(y) * m_width + x]; }
     float& at(int c, int x, int y) { return plane(c)[std::size_t(y) * m_width + x]; }
 
-    // Interleaved RGBA floats (missing channels are 0), the GPU's texture layout.
-    std::vector<float> toRgba() const;
+    // Interleaved RGBA floats of channels first..first+3 (missing ones are 0),
+    // the layout of the GPU's state texture number first / 4.
+    std::vector<float> toRgba(int first = 0) const;
+    // The inverse: fills channels first..first+3 (those that exist) from rgba.
+    void setRgba(const std::vector<float>& rgba, int first = 0);
     static State fromRgba(const std::vector<float>& rgba, int width, int height, int channels);
 
     bool operator==(const State& other) const {
