@@ -1,7 +1,10 @@
 #include "gl/gpu_simulator.hpp"
 
+#include <cassert>
 #include <cfloat>
 #include <cmath>
+#include <iterator>
+#include <string>
 
 namespace morphogen::gl {
 
@@ -13,9 +16,13 @@ float finite(float v) {
     return std::isinf(v) ? std::copysign(FLT_MAX, v) : v;
 }
 
-template <std::size_t N> void setVec4(GLint location, const std::array<float, N>& v) {
-    static_assert(N >= 4);
-    glUniform4f(location, finite(v[0]), finite(v[1]), finite(v[2]), finite(v[3]));
+// One vec4 per state texture from a per-chemical array.
+template <class T, std::size_t N>
+void setChemicalVec4s(GLint location, const std::array<T, N>& v, int textures) {
+    std::vector<float> packed(std::size_t(textures) * 4);
+    for (std::size_t i = 0; i < packed.size(); ++i)
+        packed[i] = finite(float(v[i]));
+    glUniform4fv(location, textures, packed.data());
 }
 
 } // namespace
@@ -40,29 +47,56 @@ std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model, const St
                 source = std::string("mapped.") + kComponents[m];
         text += "    p_" + name + " = " + source + ";\n";
     }
-    text += "}\n// Per chemical: the cell's diffusion rate where it is mapped (the operator\n"
-            "// was built at rate 1 for it), else 1.\nvec4 rateScale() {\n    return vec4(";
-    for (int c = 0; c < 4; ++c) {
-        const int m = k.mappedRate[std::size_t(c)];
-        text += (c ? ", " : "") +
+    text +=
+        "}\n// Per chemical: the cell's diffusion rate where it is mapped (the operator\n"
+        "// was built at rate 1 for it), else 1.\nvoid rateScale(out vec4 scale[STATE_TEXTURES]) "
+        "{\n";
+    for (int t = 0; t < stateTextures(k.chemicals); ++t) {
+        text += "    scale[" + std::to_string(t) + "] = vec4(";
+        for (int c = 4 * t; c < 4 * t + 4; ++c) {
+            const int m = c < k.chemicals ? k.mappedRate[std::size_t(c)] : -1;
+            text +=
+                (c > 4 * t ? ", " : "") +
                 (m < 0 ? std::string("1.0")
                        : "p_" + model.params()[std::size_t(k.mappedParams[std::size_t(m)])].name);
+        }
+        text += ");\n";
     }
-    text += ");\n}\n";
-    return {
-        {"<parameters>", text}, embeddedShader(model.glslPath()), embeddedShader("glsl/step.frag")};
+    text += "}\n";
+    std::string modelDefines;
+    for (const std::string& define : model.glslDefines())
+        modelDefines += "#define " + define + "\n";
+    return {{"<parameters>", text},
+            {"<model defines>", modelDefines},
+            embeddedShader(model.glslPath()),
+            embeddedShader("glsl/step.frag")};
 }
 
 GLenum stateFormat(int chemicals) {
     return chemicals <= 2 ? GL_RG32F : GL_RGBA32F;
 }
 
-PingPong::PingPong(int width, int height, GLenum internalFormat, GLenum wrap) {
+int stateTextures(int chemicals) {
+    return (chemicals + 3) / 4;
+}
+
+PingPong::PingPong(int width, int height, GLenum internalFormat, GLenum wrap, int count) {
+    assert(count >= 1 && count <= int(std::size(kStateUnits)));
     for (std::size_t i = 0; i < 2; ++i) {
-        m_textures[i] = Texture2D(width, height, internalFormat);
-        m_textures[i].setWrap(wrap);
-        m_framebuffers[i] = Framebuffer(m_textures[i]);
+        std::vector<const Texture2D*> colours;
+        m_textures[i].resize(std::size_t(count));
+        for (Texture2D& texture : m_textures[i]) {
+            texture = Texture2D(width, height, internalFormat);
+            texture.setWrap(wrap);
+            colours.push_back(&texture);
+        }
+        m_framebuffers[i] = Framebuffer(colours);
     }
+}
+
+void PingPong::bindCurrent() const {
+    for (int t = 0; t < count(); ++t)
+        current(t).bind(kStateUnits[t]);
 }
 
 void PingPong::run(const Program& program, int passes) {
@@ -71,7 +105,7 @@ void PingPong::run(const Program& program, int passes) {
     for (int i = 0; i < passes; ++i) {
         const int next = 1 - m_current;
         m_framebuffers[std::size_t(next)].bind();
-        m_textures[std::size_t(m_current)].bind(0);
+        bindCurrent();
         glDrawArrays(GL_TRIANGLES, 0, 3);
         m_current = next;
     }
@@ -82,12 +116,18 @@ GpuSimulator::GpuSimulator(const Session& session)
     : m_session(session), m_model(&session.reactionModel()),
       m_k(StepConstants::fromSession(session)),
       m_pingPong(session.width, session.height, stateFormat(m_k.chemicals),
-                 session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE) {
+                 session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE,
+                 stateTextures(m_k.chemicals)) {
     const DiffusionOperator& op = m_k.op;
     buildPrograms();
     if (m_k.integrator == Integrator::SemiImplicit) {
-        m_rhs = Texture2D(session.width, session.height, stateFormat(m_k.chemicals));
-        m_rhsFramebuffer = Framebuffer(m_rhs);
+        std::vector<const Texture2D*> colours;
+        m_rhs.resize(std::size_t(m_pingPong.count()));
+        for (Texture2D& texture : m_rhs) {
+            texture = Texture2D(session.width, session.height, stateFormat(m_k.chemicals));
+            colours.push_back(&texture);
+        }
+        m_rhsFramebuffer = Framebuffer(colours);
     }
     if (m_k.hasParamMaps()) {
         m_paramMap = Texture2D(session.width, session.height, GL_RGBA32F);
@@ -106,8 +146,9 @@ void GpuSimulator::buildPrograms() {
     m_program = buildProgram(semiImplicit ? "JACOBI_PASS" : nullptr);
     if (semiImplicit) {
         m_program.use();
-        glUniform1i(m_program.uniform("uRhs"), 2);
-        setVec4(m_program.uniform("uOmega"), m_k.omega);
+        for (int t = 0; t < m_pingPong.count(); ++t)
+            glUniform1i(m_program.uniform(("uRhs" + std::to_string(t)).c_str()), kRhsUnits[t]);
+        setChemicalVec4s(m_program.uniform("uOmega"), m_k.omega, m_pingPong.count());
         m_rhsProgram = buildProgram("RHS_PASS");
     }
 }
@@ -155,65 +196,73 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         defines.push_back(pass);
     if (!m_frozenMask.empty())
         defines.push_back("FROZEN");
+    const int textures = stateTextures(m_k.chemicals);
+    defines.push_back("STATE_TEXTURES " + std::to_string(textures));
     Program program({embeddedShader("glsl/fullscreen.vert")}, stepFragmentPieces(model, m_k),
                     defines);
 
     program.use();
-    glUniform1i(program.uniform("uState"), 0);
+    for (int t = 0; t < textures; ++t)
+        glUniform1i(program.uniform(("uState" + std::to_string(t)).c_str()), kStateUnits[t]);
     glUniform2f(program.uniform("uInvSize"), 1.0f / float(session.width),
                 1.0f / float(session.height));
     glUniform1f(program.uniform("uDt"), m_k.dt);
-    setVec4(program.uniform("uDiffusion"), op.rates);
-    setVec4(program.uniform("uClampMin"), m_k.clampMin);
-    setVec4(program.uniform("uClampMax"), m_k.clampMax);
+    setChemicalVec4s(program.uniform("uDiffusion"), op.rates, textures);
+    setChemicalVec4s(program.uniform("uClampMin"), m_k.clampMin, textures);
+    setChemicalVec4s(program.uniform("uClampMax"), m_k.clampMax, textures);
     for (std::size_t i = 0; i < model.params().size(); ++i)
         glUniform1f(program.uniform(("u_" + model.params()[i].name).c_str()), m_k.params[i]);
-    glUniform1i(program.uniform("uParamMap"), 3);
-    glUniform1i(program.uniform("uFrozen"), 4);
+    glUniform1i(program.uniform("uParamMap"), kParamMapUnit);
+    glUniform1i(program.uniform("uFrozen"), kFrozenUnit);
     if (m_k.tiled())
         glUniform2i(program.uniform("uTile"), m_k.tile[0], m_k.tile[1]);
 
     if (op.form == Form::Kernel3 || op.form == Form::Kernel5) {
-        // One vec4 per tap, one component per chemical.
-        std::vector<float> weights(25 * 4, 0.0f);
-        for (std::size_t tap = 0; tap < 25; ++tap)
-            for (int c = 0; c < op.chemicals; ++c)
-                weights[tap * 4 + std::size_t(c)] = float(op.kernels[std::size_t(c)].w[tap]);
-        glUniform4fv(program.uniform("uKernel"), 25, weights.data());
+        // Texture t's taps, one vec4 each, one component per chemical.
+        std::vector<float> weights(std::size_t(textures) * 25 * 4, 0.0f);
+        for (int c = 0; c < op.chemicals; ++c)
+            for (std::size_t tap = 0; tap < 25; ++tap)
+                weights[(std::size_t(c / 4) * 25 + tap) * 4 + std::size_t(c % 4)] =
+                    float(op.kernels[std::size_t(c)].w[tap]);
+        glUniform4fv(program.uniform("uKernel"), 25 * textures, weights.data());
     }
     if (op.form == Form::TensorMap) {
-        glUniform1i(program.uniform("uMap"), 1);
-        std::array<float, 4> m{}, dc{}, ds{};
+        glUniform1i(program.uniform("uMap"), kMapUnit);
+        std::array<float, kMaxChemicals> m{}, dc{}, ds{};
         for (int c = 0; c < op.chemicals; ++c) {
             m[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][0];
             dc[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][1];
             ds[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][2];
         }
-        setVec4(program.uniform("uMapM"), m);
-        setVec4(program.uniform("uMapDc"), dc);
-        setVec4(program.uniform("uMapDs"), ds);
+        setChemicalVec4s(program.uniform("uMapM"), m, textures);
+        setChemicalVec4s(program.uniform("uMapDc"), dc, textures);
+        setChemicalVec4s(program.uniform("uMapDs"), ds, textures);
     }
     return program;
 }
 
 void GpuSimulator::bindAuxiliaryTextures() const {
     if (m_map.id())
-        m_map.bind(1);
-    if (m_rhs.id())
-        m_rhs.bind(2);
+        m_map.bind(kMapUnit);
+    for (std::size_t t = 0; t < m_rhs.size(); ++t)
+        m_rhs[t].bind(kRhsUnits[t]);
     if (m_paramMap.id())
-        m_paramMap.bind(3);
+        m_paramMap.bind(kParamMapUnit);
     if (m_frozen.id())
-        m_frozen.bind(4);
+        m_frozen.bind(kFrozenUnit);
 }
 
 void GpuSimulator::setState(const State& state) {
-    m_pingPong.current().uploadRgba(state.toRgba());
+    assert(state.channels() == m_k.chemicals);
+    for (int t = 0; t < m_pingPong.count(); ++t)
+        m_pingPong.current(t).uploadRgba(state.toRgba(4 * t));
 }
 
 State GpuSimulator::state() const {
-    return State::fromRgba(m_pingPong.current().downloadRgba(), m_k.domain.width(),
-                           m_k.domain.height(), m_k.chemicals);
+    State state(m_k.domain.width(), m_k.domain.height(), m_k.chemicals);
+    for (int t = 0; t < m_pingPong.count(); ++t)
+        state.setRgba(m_pingPong.current(t).downloadRgba(), 4 * t);
+    return state;
 }
 
 void GpuSimulator::run(int steps) {
@@ -227,7 +276,7 @@ void GpuSimulator::run(int steps) {
         m_rhsProgram.use();
         m_pingPong.vertexArray().bind();
         m_rhsFramebuffer.bind();
-        m_pingPong.current().bind(0);
+        m_pingPong.bindCurrent();
         glDrawArrays(GL_TRIANGLES, 0, 3);
         m_pingPong.run(m_program, m_k.jacobiSweeps);
     }
@@ -239,7 +288,7 @@ CopyPass::CopyPass(int width, int height, GLenum internalFormat)
     m_program =
         Program({embeddedShader("glsl/fullscreen.vert")}, {embeddedShader("glsl/copy.frag")}, {});
     m_program.use();
-    glUniform1i(m_program.uniform("uState"), 0);
+    glUniform1i(m_program.uniform("uState"), kStateUnits[0]);
     glUniform2f(m_program.uniform("uInvSize"), 1.0f / float(width), 1.0f / float(height));
 }
 

@@ -7,29 +7,47 @@
 
 namespace morphogen::gl {
 
-// Two same-size float textures with framebuffers; each pass draws the
-// current texture through a program into the other, then swaps.
+// Texture units of the step programs. State texture t is sampled from
+// kStateUnits[t], the semi-implicit right-hand side's from kRhsUnits[t].
+constexpr int kStateUnits[] = {0, 5, 6};
+constexpr int kRhsUnits[] = {2, 7, 8};
+constexpr int kMapUnit = 1;
+constexpr int kParamMapUnit = 3;
+constexpr int kFrozenUnit = 4;
+
+// Two sets of `count` same-size float textures, each set behind one
+// framebuffer (multiple render targets); each pass samples the current set
+// through a program and draws into the other, then swaps.
 class PingPong {
 public:
     PingPong() = default;
-    PingPong(int width, int height, GLenum internalFormat, GLenum wrap);
+    PingPong(int width, int height, GLenum internalFormat, GLenum wrap, int count = 1);
     void run(const Program& program, int passes);
-    Texture2D& current() { return m_textures[std::size_t(m_current)]; }
+    int count() const { return int(m_textures[0].size()); }
+    Texture2D& current(int t = 0) { return m_textures[std::size_t(m_current)][std::size_t(t)]; }
+    const Texture2D& current(int t = 0) const {
+        return m_textures[std::size_t(m_current)][std::size_t(t)];
+    }
+    // Binds the current set to kStateUnits.
+    void bindCurrent() const;
     const VertexArray& vertexArray() const { return m_vao; }
-    const Texture2D& current() const { return m_textures[std::size_t(m_current)]; }
 
 private:
     VertexArray m_vao;
-    std::array<Texture2D, 2> m_textures;
+    std::array<std::vector<Texture2D>, 2> m_textures;
     std::array<Framebuffer, 2> m_framebuffers;
     int m_current = 0;
 };
 
 // The state texture format for a model: RG32F for up to two chemicals (half
-// the bandwidth), RGBA32F for three or four.
+// the bandwidth), RGBA32F for more.
 GLenum stateFormat(int chemicals);
 
-// The product backend: FBO ping-pong over two float state textures. The
+// State textures a model needs: four chemicals per texture.
+int stateTextures(int chemicals);
+
+// The product backend: FBO ping-pong over float state textures (several,
+// written together, for models with more than four chemicals). The
 // step program is assembled from glsl/fullscreen.vert, the model's reaction
 // snippet (glsl/models/NAME.glsl) and glsl/step.frag, with the diffusion
 // operator's form as a #define variant; parameters are uniforms and edges are the sampler's wrap
@@ -60,7 +78,7 @@ private:
     Texture2D m_map; // TensorMap operators only
     // SemiImplicit: the right-hand-side pass and its target.
     Program m_rhsProgram;
-    Texture2D m_rhs;
+    std::vector<Texture2D> m_rhs;
     Framebuffer m_rhsFramebuffer;
     Texture2D m_paramMap; // param_maps: up to 4 parameters per cell
     Texture2D m_frozen;   // cascades: 1 where a cell is frozen

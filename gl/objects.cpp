@@ -1,6 +1,7 @@
 #include "gl/objects.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -64,25 +65,37 @@ std::vector<float> Texture2D::downloadRgba() const {
     return rgba;
 }
 
-Framebuffer::Framebuffer(const Texture2D& colour)
-    : m_width(colour.width()), m_height(colour.height()) {
+Framebuffer::Framebuffer(const std::vector<const Texture2D*>& colours) {
+    assert(!colours.empty());
+    m_width = colours.front()->width();
+    m_height = colours.front()->height();
+    GLint maxBuffers = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxBuffers);
+    if (GLint(colours.size()) > maxBuffers)
+        throw std::runtime_error("a framebuffer needs " + std::to_string(colours.size()) +
+                                 " colour attachments; this GL allows " +
+                                 std::to_string(maxBuffers));
     GLuint id = 0;
     glGenFramebuffers(1, &id);
     m_name = UniqueName<FramebufferTraits>(id);
     glBindFramebuffer(GL_FRAMEBUFFER, id);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour.id(), 0);
+    std::vector<GLenum> buffers;
+    for (std::size_t i = 0; i < colours.size(); ++i) {
+        assert(colours[i]->width() == m_width && colours[i]->height() == m_height);
+        const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(i);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, attachment, GL_TEXTURE_2D, colours[i]->id(), 0);
+        buffers.push_back(attachment);
+    }
+    glDrawBuffers(GLsizei(buffers.size()), buffers.data());
     const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw std::runtime_error("framebuffer with a " + std::to_string(colour.width()) + "x" +
-                                 std::to_string(colour.height()) +
-                                 " texture is incomplete (status 0x" +
-                                 [&] {
-                                     char buf[16];
-                                     std::snprintf(buf, sizeof buf, "%x", status);
-                                     return std::string(buf);
-                                 }() +
-                                 ")");
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        char code[16];
+        std::snprintf(code, sizeof code, "%x", status);
+        throw std::runtime_error("framebuffer with " + std::to_string(colours.size()) + " " +
+                                 std::to_string(m_width) + "x" + std::to_string(m_height) +
+                                 " texture(s) is incomplete (status 0x" + code + ")");
+    }
 }
 
 void Framebuffer::bind() const {

@@ -77,11 +77,13 @@ private:
     GLenum m_internalFormat = 0;
 };
 
-// A framebuffer with one colour attachment; completeness is checked.
+// A framebuffer drawing into one or more same-size colour textures (fragment
+// output i goes to colours[i]); completeness is checked.
 class Framebuffer {
 public:
     Framebuffer() = default;
-    explicit Framebuffer(const Texture2D& colour);
+    explicit Framebuffer(const Texture2D& colour) : Framebuffer(std::vector{&colour}) {}
+    explicit Framebuffer(const std::vector<const Texture2D*>& colours);
     GLuint id() const { return m_name.id(); }
     void bind() const;
 

@@ -14,34 +14,71 @@
 // The integrator is a second variant: (none) explicit Euler; RHS_PASS and
 // JACOBI_PASS the two passes of a semi-implicit step.
 // react() comes from the model's snippet, compiled in front of this file.
-// Every vec4 holds up to four chemicals, one per component.
+//
+// The state is STATE_TEXTURES (1 to 3) RGBA textures written together
+// (multiple render targets): chemical i is component i % 4 of texture i / 4.
+// Every per-chemical uniform is an array with one vec4 per texture; the
+// sampler of texture t is uState<t> (sampler arrays cannot be indexed by a
+// loop variable in GLSL 3.30, hence FOR_EACH_STATE).
 
-uniform sampler2D uState;
+#ifndef STATE_TEXTURES
+#define STATE_TEXTURES 1
+#endif
+
+uniform sampler2D uState0;
+#if STATE_TEXTURES > 1
+uniform sampler2D uState1;
+#endif
+#if STATE_TEXTURES > 2
+uniform sampler2D uState2;
+#endif
+// FOR_EACH_STATE(X) expands X(t, state sampler, rhs sampler) per texture (the
+// rhs samplers exist in JACOBI_PASS only; GLSL has no ## to paste names).
+#if STATE_TEXTURES == 1
+#define FOR_EACH_STATE(X) X(0, uState0, uRhs0)
+#elif STATE_TEXTURES == 2
+#define FOR_EACH_STATE(X) X(0, uState0, uRhs0) X(1, uState1, uRhs1)
+#elif STATE_TEXTURES == 3
+#define FOR_EACH_STATE(X) X(0, uState0, uRhs0) X(1, uState1, uRhs1) X(2, uState2, uRhs2)
+#else
+#error "STATE_TEXTURES must be 1, 2 or 3"
+#endif
+
 uniform vec2 uInvSize;
 uniform float uDt;
-uniform vec4 uDiffusion; // per-chemical rate (Laplacian variants)
-uniform vec4 uClampMin;
-uniform vec4 uClampMax;
+uniform vec4 uDiffusion[STATE_TEXTURES]; // per-chemical rate (Laplacian variants)
+uniform vec4 uClampMin[STATE_TEXTURES];
+uniform vec4 uClampMax[STATE_TEXTURES];
 
 #if defined(KERNEL_3) || defined(KERNEL_5)
-uniform vec4 uKernel[25]; // weight of c(x + dx, y + dy) at (dy + 2) * 5 + dx + 2
+// Weight of c(x + dx, y + dy) in texture t at t * 25 + (dy + 2) * 5 + dx + 2.
+uniform vec4 uKernel[25 * STATE_TEXTURES];
 #endif
 #ifdef TENSOR_MAP
 uniform sampler2D uMap; // (s, s cos 2theta, s sin 2theta)
-uniform vec4 uMapM;     // per chemical: see DiffusionOperator in diffusion_operator.hpp
-uniform vec4 uMapDc;
-uniform vec4 uMapDs;
+// Per chemical: see DiffusionOperator in diffusion_operator.hpp.
+uniform vec4 uMapM[STATE_TEXTURES];
+uniform vec4 uMapDc[STATE_TEXTURES];
+uniform vec4 uMapDs[STATE_TEXTURES];
 #endif
 
 #ifdef FROZEN
 uniform sampler2D uFrozen; // 1 where a cell keeps its value (cascades)
 #endif
 
-out vec4 outState;
+layout(location = 0) out vec4 outState[STATE_TEXTURES];
 
+void loadParams(vec2 uv);                       // generated in C++: p_<name> from uniforms or uParamMap
+void rateScale(out vec4 scale[STATE_TEXTURES]); // generated: each chemical's mapped rate, or 1
+
+// Snippets for up to four chemicals define vec4 react(vec4); the engine
+// works on arrays of textures.
+#ifndef REACT_ARRAYS
 vec4 react(vec4 c);
-void loadParams(vec2 uv); // generated in C++: p_<name> from uniforms or uParamMap
-vec4 rateScale();         // generated: per-chemical diffusion rate of this cell, or 1
+void react(vec4 c[STATE_TEXTURES], out vec4 dcdt[STATE_TEXTURES]) {
+    dcdt[0] = react(c[0]);
+}
+#endif
 
 #ifdef TILES
 uniform ivec2 uTile; // cells per tile
@@ -52,21 +89,22 @@ ivec2 tileNeighbour(int dx, int dy) {
     ivec2 local = cell % uTile;
     return cell - local + (local + ivec2(dx, dy) + uTile) % uTile;
 }
-#define AT(dx, dy) texelFetch(uState, tileNeighbour(dx, dy), 0)
+#define AT(dx, dy) texelFetch(state, tileNeighbour(dx, dy), 0)
 #else
-#define AT(dx, dy) textureOffset(uState, uv, ivec2(dx, dy))
+#define AT(dx, dy) textureOffset(state, uv, ivec2(dx, dy))
 #endif
-#define TAP(dx, dy) sum += uKernel[(dy + 2) * 5 + dx + 2] * AT(dx, dy)
+#define TAP(dx, dy) sum += uKernel[t * 25 + (dy + 2) * 5 + dx + 2] * AT(dx, dy)
 
 #ifdef TENSOR_MAP
-vec4 axx(vec4 m) { return uMapM * m.x + uMapDc * m.y - uMapDs * m.z; }
-vec4 ayy(vec4 m) { return uMapM * m.x - uMapDc * m.y + uMapDs * m.z; }
-vec4 axy(vec4 m) { return -(uMapDc * m.z + uMapDs * m.y); }
+vec4 axx(int t, vec4 m) { return uMapM[t] * m.x + uMapDc[t] * m.y - uMapDs[t] * m.z; }
+vec4 ayy(int t, vec4 m) { return uMapM[t] * m.x - uMapDc[t] * m.y + uMapDs[t] * m.z; }
+vec4 axy(int t, vec4 m) { return -(uMapDc[t] * m.z + uMapDs[t] * m.y); }
 #endif
 
-vec4 diffusion(vec2 uv, vec4 c) {
+// The diffusion term of the four chemicals in texture t (sampled by `state`).
+vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
 #if defined(KERNEL_3) || defined(KERNEL_5)
-    vec4 sum = uKernel[12] * c;
+    vec4 sum = uKernel[t * 25 + 12] * c;
     TAP(-1, -1); TAP(0, -1); TAP(1, -1);
     TAP(-1, 0);              TAP(1, 0);
     TAP(-1, 1);  TAP(0, 1);  TAP(1, 1);
@@ -87,28 +125,31 @@ vec4 diffusion(vec2 uv, vec4 c) {
     vec4 ml = textureOffset(uMap, uv, ivec2(-1, 0)), mr = textureOffset(uMap, uv, ivec2(1, 0));
     vec4 md = textureOffset(uMap, uv, ivec2(0, -1)), mu = textureOffset(uMap, uv, ivec2(0, 1));
     // Face-averaged fluxes: the sum over a periodic grid telescopes, so mass is conserved.
-    vec4 xx = 0.5 * (axx(mc) + axx(mr)) * (r - c) - 0.5 * (axx(mc) + axx(ml)) * (c - l);
-    vec4 yy = 0.5 * (ayy(mc) + ayy(mu)) * (u - c) - 0.5 * (ayy(mc) + ayy(md)) * (c - d);
+    vec4 xx = 0.5 * (axx(t, mc) + axx(t, mr)) * (r - c) - 0.5 * (axx(t, mc) + axx(t, ml)) * (c - l);
+    vec4 yy = 0.5 * (ayy(t, mc) + ayy(t, mu)) * (u - c) - 0.5 * (ayy(t, mc) + ayy(t, md)) * (c - d);
     vec4 ru = AT(1, 1), rd = AT(1, -1), lu = AT(-1, 1), ld = AT(-1, -1);
-    vec4 xy = 0.25 * (axy(mr) * (ru - rd) - axy(ml) * (lu - ld)) +
-              0.25 * (axy(mu) * (ru - lu) - axy(md) * (rd - ld));
+    vec4 xy = 0.25 * (axy(t, mr) * (ru - rd) - axy(t, ml) * (lu - ld)) +
+              0.25 * (axy(t, mu) * (ru - lu) - axy(t, md) * (rd - ld));
     return xx + yy + xy;
 #else
     vec4 sides = AT(-1, 0) + AT(1, 0) + AT(0, -1) + AT(0, 1);
 #ifdef STENCIL_9
     vec4 corners = AT(-1, -1) + AT(1, -1) + AT(-1, 1) + AT(1, 1);
-    return uDiffusion * ((4.0 * sides + corners - 20.0 * c) * (1.0 / 6.0));
+    return uDiffusion[t] * ((4.0 * sides + corners - 20.0 * c) * (1.0 / 6.0));
 #else
-    return uDiffusion * (sides - 4.0 * c);
+    return uDiffusion[t] * (sides - 4.0 * c);
 #endif
 #endif
 }
+
+#define LOAD_STATE(t, state, rhs) c[t] = texture(state, uv);
+#define COPY_STATE(t, state, rhs) outState[t] = texture(state, uv);
 
 // Frozen cells copy their value through, bit for bit.
 #ifdef FROZEN
 #define KEEP_FROZEN(uv)                                                                            \
     if (texture(uFrozen, uv).x > 0.5) {                                                            \
-        outState = texture(uState, uv);                                                            \
+        FOR_EACH_STATE(COPY_STATE)                                                                 \
         return;                                                                                    \
     }
 #else
@@ -120,29 +161,55 @@ vec4 diffusion(vec2 uv, vec4 c) {
 void main() {
     vec2 uv = gl_FragCoord.xy * uInvSize;
     loadParams(uv);
-    vec4 c = texture(uState, uv);
-    outState = c + uDt * react(c);
+    vec4 c[STATE_TEXTURES];
+    FOR_EACH_STATE(LOAD_STATE)
+    vec4 f[STATE_TEXTURES];
+    react(c, f);
+#define RHS(t, state, rhs) outState[t] = c[t] + uDt * f[t];
+    FOR_EACH_STATE(RHS)
 }
 #elif defined(JACOBI_PASS)
-// Semi-implicit, one relaxation sweep on (I - dt A) x = rhs: uState holds the
-// current iterate; uOmega is each chemical's Richardson weight, chosen from
-// the kernel's symbol (Jacobi's for the Laplacians).
-uniform sampler2D uRhs;
-uniform vec4 uOmega;
+// Semi-implicit, one relaxation sweep on (I - dt A) x = rhs: uState<t> holds
+// the current iterate, uRhs<t> the right-hand side; uOmega is each chemical's
+// Richardson weight, chosen from the kernel's symbol (Jacobi's for the
+// Laplacians).
+uniform sampler2D uRhs0;
+#if STATE_TEXTURES > 1
+uniform sampler2D uRhs1;
+#endif
+#if STATE_TEXTURES > 2
+uniform sampler2D uRhs2;
+#endif
+uniform vec4 uOmega[STATE_TEXTURES];
 void main() {
     vec2 uv = gl_FragCoord.xy * uInvSize;
     KEEP_FROZEN(uv)
     loadParams(uv);
-    vec4 x = texture(uState, uv);
-    outState = clamp(x + uOmega * (texture(uRhs, uv) - x + uDt * rateScale() * diffusion(uv, x)),
-                     uClampMin, uClampMax);
+    vec4 scale[STATE_TEXTURES];
+    rateScale(scale);
+#define SWEEP(t, state, rhs)                                                                          \
+    {                                                                                              \
+        vec4 x = texture(state, uv);                                                               \
+        outState[t] = clamp(x + uOmega[t] * (texture(rhs, uv) - x +                                 \
+                                             uDt * scale[t] * diffusion(state, t, uv, x)),         \
+                            uClampMin[t], uClampMax[t]);                                           \
+    }
+    FOR_EACH_STATE(SWEEP)
 }
 #else
 void main() {
     vec2 uv = gl_FragCoord.xy * uInvSize;
     KEEP_FROZEN(uv)
     loadParams(uv);
-    vec4 c = texture(uState, uv);
-    outState = clamp(c + uDt * (react(c) + rateScale() * diffusion(uv, c)), uClampMin, uClampMax);
+    vec4 c[STATE_TEXTURES];
+    FOR_EACH_STATE(LOAD_STATE)
+    vec4 f[STATE_TEXTURES];
+    react(c, f);
+    vec4 scale[STATE_TEXTURES];
+    rateScale(scale);
+#define STEP(t, state, rhs)                                                                          \
+    outState[t] = clamp(c[t] + uDt * (f[t] + scale[t] * diffusion(state, t, uv, c[t])),            \
+                        uClampMin[t], uClampMax[t]);
+    FOR_EACH_STATE(STEP)
 }
 #endif
