@@ -283,12 +283,15 @@ void GpuSimulator::run(int steps) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-CopyPass::CopyPass(int width, int height, GLenum internalFormat)
-    : m_pingPong(width, height, internalFormat, GL_REPEAT) {
+CopyPass::CopyPass(int width, int height, int chemicals)
+    : m_pingPong(width, height, stateFormat(chemicals), GL_REPEAT, stateTextures(chemicals)) {
+    const int textures = stateTextures(chemicals);
     m_program =
-        Program({embeddedShader("glsl/fullscreen.vert")}, {embeddedShader("glsl/copy.frag")}, {});
+        Program({embeddedShader("glsl/fullscreen.vert")}, {embeddedShader("glsl/copy.frag")},
+                {"STATE_TEXTURES " + std::to_string(textures)});
     m_program.use();
-    glUniform1i(m_program.uniform("uState"), kStateUnits[0]);
+    for (int t = 0; t < textures; ++t)
+        glUniform1i(m_program.uniform(("uState" + std::to_string(t)).c_str()), kStateUnits[t]);
     glUniform2f(m_program.uniform("uInvSize"), 1.0f / float(width), 1.0f / float(height));
 }
 

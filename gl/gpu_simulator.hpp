@@ -90,10 +90,11 @@ private:
 std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model, const StepConstants& k);
 
 // The copy pass the benchmark measures the step against: same format, same
-// size, one fetch per texel, same ping-pong.
+// size, same number of state textures, one fetch per texel, same ping-pong.
 class CopyPass {
 public:
-    CopyPass(int width, int height, GLenum internalFormat);
+    // The textures a simulation of `chemicals` chemicals steps.
+    CopyPass(int width, int height, int chemicals);
     void run(int steps) { m_pingPong.run(m_program, steps); }
 
 private:

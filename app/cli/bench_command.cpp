@@ -189,7 +189,7 @@ void bench(const BenchFlags& f) {
             gpu.setState(initial);
             gpuStep = measure([&](int k) { gpu.run(k); }, [] { glFinish(); }, f.seconds, batch);
             std::fprintf(stderr, "bench: %dx%d gpu copy...\n", n, n);
-            gl::CopyPass copy(n, n, gl::stateFormat(int(s.reactionModel().chemicals().size())));
+            gl::CopyPass copy(n, n, int(s.reactionModel().chemicals().size()));
             gpuCopy = measure([&](int k) { copy.run(k); }, [] { glFinish(); }, f.seconds, batch);
             row["gpu_step_iterations_per_s"] = gpuStep;
             row["gpu_step_cell_updates_per_s"] = gpuStep * cells;
