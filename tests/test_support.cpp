@@ -14,6 +14,25 @@ Session smallSession(const std::string& preset, int size, int steps) {
     return s;
 }
 
+Session shrunk(Session s, int size, int stepsPerSegment) {
+    s.width = s.height = size;
+    if (!s.schedule.empty()) {
+        const int levels = int(s.schedule.size());
+        for (int i = 0; i < levels; ++i) {
+            const int side = std::max(4, size >> (levels - 1 - i));
+            s.schedule[std::size_t(i)] = {side, side, stepsPerSegment};
+        }
+        s.steps = stepsPerSegment * levels;
+    } else if (!s.stages.empty()) {
+        for (Stage& stage : s.stages)
+            stage.steps = stepsPerSegment;
+        s.steps = stepsPerSegment * int(s.stages.size());
+    } else {
+        s.steps = stepsPerSegment;
+    }
+    return s;
+}
+
 float maxAbsDifference(const State& a, const State& b) {
     float worst = 0.0f;
     for (int c = 0; c < a.channels(); ++c)

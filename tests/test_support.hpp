@@ -11,6 +11,11 @@ namespace morphogen::test {
 // A preset shrunk for tests: size x size cells, `steps` steps.
 Session smallSession(const std::string& preset, int size, int steps);
 
+// Any session (preset) cut down for a quick run: size x size cells and
+// `stepsPerSegment` steps in each stage or schedule level (a schedule keeps
+// its levels, halving the size per level below the last).
+Session shrunk(Session session, int size, int stepsPerSegment);
+
 // Largest absolute difference over all chemicals.
 float maxAbsDifference(const State& a, const State& b);
 
