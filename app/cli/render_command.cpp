@@ -160,7 +160,7 @@ Session buildSession(const RenderFlags& f) {
     if (!f.chemical.empty())
         s.colormap.chemical = f.chemical;
     checkColormapName(s.colormap.name);
-    colormapChemical(s.colormap, s.reactionModel());
+    colormapChemical(s.colormap, s.outputModel());
     validateSession(s, f.sessionFile.empty() ? "preset " + s.name : f.sessionFile);
     return s;
 }

@@ -59,7 +59,7 @@ int runChunk(const Session& session) {
 void writeRenderOutput(const RunResult& result, const std::string& imagePath,
                        const std::string& sessionPath, int bitDepth) {
     const Session& session = result.completed;
-    const ReactionModel& model = session.reactionModel();
+    const ReactionModel& model = session.outputModel(); // the final state's
     if (imageFormatForPath(imagePath) == ImageFormat::Exr) {
         std::vector<std::string> names;
         for (const ChemicalSpec& c : model.chemicals())

@@ -1,5 +1,6 @@
 #include "core/cascade.hpp"
 
+#include <algorithm>
 #include <cassert>
 
 #include <nlohmann/json.hpp>
@@ -35,24 +36,83 @@ void resetFrozenCells(State& state, const std::vector<std::uint8_t>& frozen,
     }
 }
 
+const ReactionModel& stageModel(const std::vector<Stage>& stages, std::size_t index,
+                                const ReactionModel& sessionModel) {
+    for (std::size_t i = std::min(index + 1, stages.size()); i-- > 0;)
+        if (!stages[i].model.empty()) {
+            const ReactionModel* m = findModel(stages[i].model);
+            assert(m && "stagesFromJson checks the model");
+            return *m;
+        }
+    return sessionModel;
+}
+
+namespace {
+
+std::string modelNames() {
+    std::string names;
+    for (const ReactionModel* m : allModels())
+        names += (names.empty() ? "" : ", ") + m->name();
+    return names;
+}
+
+std::string chemicalNames(const ReactionModel& model) {
+    std::string names;
+    for (const ChemicalSpec& c : model.chemicals())
+        names += (names.empty() ? "" : ", ") + c.name;
+    return names;
+}
+
+std::string paramNames(const ReactionModel& model) {
+    std::string names;
+    for (const ParamSpec& p : model.params())
+        names += (names.empty() ? "" : ", ") + p.name;
+    return names;
+}
+
+} // namespace
+
 std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
-                                  const ReactionModel& model) {
+                                  const ReactionModel& sessionModel) {
     if (!j.is_array() || j.empty())
         throw InputError(source + ": field 'stages' must be a non-empty array of stages "
-                                  "{\"steps\": N, \"params\": {...}, \"freeze\": {...}, "
+                                  "{\"steps\": N, \"model\": \"...\", \"init\": {...}, "
+                                  "\"dt\": x, \"params\": {...}, \"freeze\": {...}, "
                                   "\"reset\": {...}}");
     std::vector<Stage> stages;
+    const ReactionModel* model = &sessionModel; // the model the stage runs
     for (std::size_t i = 0; i < j.size(); ++i) {
         FieldReader reader(j[i], source, "stages[" + std::to_string(i) + "]");
-        reader.rejectUnknown({"steps", "params", "freeze", "reset"});
+        reader.rejectUnknown({"steps", "model", "init", "dt", "params", "freeze", "reset"});
         Stage stage;
         stage.steps = int(reader.integer("steps", 0, 0, 100000000));
+        const ReactionModel* previous = model; // the model of the state the freeze rule reads
+        if (reader.find("model")) {
+            stage.model = reader.string("model", "");
+            model = findModel(stage.model);
+            if (!model)
+                reader.failField("model", "is '" + stage.model +
+                                              "', not a known model (known: " + modelNames() + ")");
+            if (i == 0)
+                reader.failField("model", "cannot be set on the first stage: it runs the "
+                                          "session's model ('" +
+                                              sessionModel.name() + "')");
+        }
+        if (const json* init = reader.find("init")) {
+            if (stage.model.empty())
+                reader.failField("init", "is only accepted on a stage that sets 'model' (it is "
+                                         "the new model's start)");
+            stage.init = initialConditionFromJson(*init, source, reader.path("init"), *model);
+        }
+        if (reader.find("dt"))
+            stage.dt = float(reader.number("dt", 1.0, 1e-6, 100.0));
         if (const json* params = reader.find("params")) {
             FieldReader p(*params, source, reader.path("params"));
             for (auto it = params->begin(); it != params->end(); ++it) {
-                const ParamSpec* spec = model.param(it.key());
+                const ParamSpec* spec = model->param(it.key());
                 if (!spec)
-                    p.failField(it.key(), "is not a parameter of model '" + model.name() + "'");
+                    p.failField(it.key(), "is not a parameter of model '" + model->name() +
+                                              "' (parameters: " + paramNames(*model) + ")");
                 stage.params[it.key()] = float(p.numberValue(*it, it.key(), spec->min, spec->max));
             }
         }
@@ -61,9 +121,14 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
             f.rejectUnknown({"chemical", "min", "max"});
             FreezeRule rule;
             rule.chemical = f.string("chemical", "");
-            if (model.chemicalIndex(rule.chemical) < 0)
-                f.failField("chemical", "is '" + rule.chemical + "', not a chemical of model '" +
-                                            model.name() + "'");
+            if (previous->chemicalIndex(rule.chemical) < 0)
+                f.failField("chemical",
+                            "is '" + rule.chemical + "', not a chemical of model '" +
+                                previous->name() +
+                                (previous != model ? "' (the previous stage's model, whose "
+                                                     "result the rule reads; chemicals: "
+                                                   : "' (chemicals: ") +
+                                chemicalNames(*previous) + ")");
             rule.min = float(f.number("min", -1e30, -1e30, 1e30));
             rule.max = float(f.number("max", 1e30, -1e30, 1e30));
             if (rule.min > rule.max)
@@ -73,8 +138,9 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
         if (const json* reset = reader.find("reset")) {
             FieldReader r(*reset, source, reader.path("reset"));
             for (auto it = reset->begin(); it != reset->end(); ++it) {
-                if (model.chemicalIndex(it.key()) < 0)
-                    r.failField(it.key(), "is not a chemical of model '" + model.name() + "'");
+                if (model->chemicalIndex(it.key()) < 0)
+                    r.failField(it.key(), "is not a chemical of model '" + model->name() +
+                                              "' (chemicals: " + chemicalNames(*model) + ")");
                 stage.reset[it.key()] = float(r.numberValue(*it, it.key(), -1e6, 1e6));
             }
         }
@@ -88,6 +154,12 @@ json stagesToJson(const std::vector<Stage>& stages) {
     for (const Stage& s : stages) {
         json stage;
         stage["steps"] = s.steps;
+        if (!s.model.empty())
+            stage["model"] = s.model;
+        if (s.init)
+            stage["init"] = initialConditionToJson(*s.init);
+        if (s.dt)
+            stage["dt"] = *s.dt;
         if (!s.params.empty())
             stage["params"] = s.params;
         if (s.freeze)

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/models/gray_scott.hpp"
+#include "core/models/meinhardt_stripes.hpp"
 #include "core/models/turing_mcgraw.hpp"
 #include "core/models/turing_turk.hpp"
 #include "core/models/witkin_kass.hpp"
@@ -284,6 +285,8 @@ template <class Pick> StepRowsKernel withCell(const ReactionModel& model, const 
         return pick(Tag<TuringMcGrawModel::Cell>());
     if (dynamic_cast<const WitkinKassModel*>(&model) != nullptr)
         return pick(Tag<WitkinKassModel::Cell>());
+    if (dynamic_cast<const MeinhardtStripesModel*>(&model) != nullptr)
+        return pick(Tag<MeinhardtStripesModel::Cell>());
     return nullptr;
 }
 

@@ -5,6 +5,9 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "core/json_fields.hpp"
 #include "core/random.hpp"
 #include "core/reaction_model.hpp"
 
@@ -30,6 +33,87 @@ float lookup(const std::map<std::string, float>& values, const std::string& key,
     return it == values.end() ? fallback : it->second;
 }
 } // namespace
+
+namespace {
+
+using nlohmann::json;
+
+std::map<std::string, float> chemicalValues(const FieldReader& parent, const std::string& key,
+                                            const ReactionModel& model) {
+    std::map<std::string, float> values;
+    const json* j = parent.find(key);
+    if (!j)
+        return values;
+    FieldReader reader(*j, parent.source(), parent.path(key));
+    for (auto it = j->begin(); it != j->end(); ++it) {
+        if (model.chemicalIndex(it.key()) < 0) {
+            std::string names;
+            for (const ChemicalSpec& c : model.chemicals())
+                names += (names.empty() ? "" : ", ") + c.name;
+            reader.fail("field '" + reader.path(it.key()) + "'",
+                        "is not a chemical of model '" + model.name() + "' (chemicals: " + names +
+                            ")");
+        }
+        values[it.key()] = float(reader.numberValue(*it, it.key(), -1e6, 1e6));
+    }
+    return values;
+}
+
+} // namespace
+
+InitialCondition initialConditionFromJson(const nlohmann::json& j, const std::string& source,
+                                          const std::string& path, const ReactionModel& model) {
+    InitialCondition init;
+    FieldReader reader(j, source, path);
+    reader.rejectUnknown(
+        {"type", "base", "noise", "inside", "fraction", "count", "radius", "spacing", "jitter"});
+    const std::string type = reader.string("type", toString(init.type));
+    if (type == "noise")
+        init.type = InitialCondition::Type::Noise;
+    else if (type == "centre_square")
+        init.type = InitialCondition::Type::CentreSquare;
+    else if (type == "seed_spots")
+        init.type = InitialCondition::Type::SeedSpots;
+    else if (type == "jittered_grid")
+        init.type = InitialCondition::Type::JitteredGrid;
+    else
+        reader.failField("type", "is '" + type +
+                                     "', accepted: noise, centre_square, seed_spots, "
+                                     "jittered_grid");
+    if (reader.find("base"))
+        init.base = chemicalValues(reader, "base", model);
+    if (reader.find("noise"))
+        init.noise = chemicalValues(reader, "noise", model);
+    if (reader.find("inside"))
+        init.inside = chemicalValues(reader, "inside", model);
+    init.squareFraction = float(reader.number("fraction", init.squareFraction, 0.0, 1.0));
+    init.spotCount = int(reader.integer("count", init.spotCount, 0, 100000));
+    init.spotRadius = float(reader.number("radius", init.spotRadius, 0.0, 10000.0));
+    init.spacing = float(reader.number("spacing", init.spacing, 2.0, 100000.0));
+    init.jitter = float(reader.number("jitter", init.jitter, 0.0, 1.0));
+    return init;
+}
+
+nlohmann::json initialConditionToJson(const InitialCondition& init) {
+    json j;
+    j["type"] = toString(init.type);
+    j["base"] = init.base;
+    j["noise"] = init.noise;
+    if (init.type != InitialCondition::Type::Noise)
+        j["inside"] = init.inside;
+    if (init.type == InitialCondition::Type::CentreSquare)
+        j["fraction"] = init.squareFraction;
+    if (init.type == InitialCondition::Type::SeedSpots) {
+        j["count"] = init.spotCount;
+        j["radius"] = init.spotRadius;
+    }
+    if (init.type == InitialCondition::Type::JitteredGrid) {
+        j["spacing"] = init.spacing;
+        j["jitter"] = init.jitter;
+        j["radius"] = init.spotRadius;
+    }
+    return j;
+}
 
 State makeInitialState(const InitialCondition& init, const ReactionModel& model,
                        const std::map<std::string, float>& params, int width, int height,

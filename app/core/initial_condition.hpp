@@ -4,6 +4,8 @@
 #include <map>
 #include <string>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "core/state.hpp"
 
 namespace morphogen {
@@ -28,6 +30,13 @@ struct InitialCondition {
 };
 
 std::string toString(InitialCondition::Type type);
+
+// Reads an "init" object found at `path` ("init", "stages[1].init") of
+// `source` for `model`: unknown fields and chemicals are InputErrors. Fields
+// it leaves out are empty, not inherited from the model's default start.
+InitialCondition initialConditionFromJson(const nlohmann::json& json, const std::string& source,
+                                          const std::string& path, const ReactionModel& model);
+nlohmann::json initialConditionToJson(const InitialCondition& init);
 
 // The initial state, a pure function of (condition, model, params, size, seed).
 State makeInitialState(const InitialCondition& init, const ReactionModel& model,

@@ -3,6 +3,7 @@
 #include <cassert>
 
 #include "core/models/gray_scott.hpp"
+#include "core/models/meinhardt_stripes.hpp"
 #include "core/models/turing_mcgraw.hpp"
 #include "core/models/turing_turk.hpp"
 #include "core/models/witkin_kass.hpp"
@@ -40,7 +41,8 @@ std::vector<const ReactionModel*> allModels() {
     static const TuringTurkModel turingTurk;
     static const TuringMcGrawModel turingMcGraw;
     static const WitkinKassModel witkinKass;
-    return {&grayScott, &turingTurk, &turingMcGraw, &witkinKass};
+    static const MeinhardtStripesModel meinhardtStripes;
+    return {&grayScott, &turingTurk, &turingMcGraw, &witkinKass, &meinhardtStripes};
 }
 
 const ReactionModel* findModel(const std::string& name) {

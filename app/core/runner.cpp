@@ -48,9 +48,10 @@ namespace {
 
 // One segment of a session: a schedule level or a cascade stage.
 struct Segment {
-    Session session; // its size, steps, params and grid spacing
+    Session session; // its model, size, steps, params, dt and grid spacing
     std::optional<FreezeRule> freeze;
     std::map<std::string, float> reset;
+    bool newModel = false; // starts session.model afresh from session.init
 };
 
 std::vector<Segment> segmentsOf(const Session& session) {
@@ -60,9 +61,23 @@ std::vector<Segment> segmentsOf(const Session& session) {
     base.stages.clear();
     if (!session.stages.empty()) {
         for (const Stage& stage : session.stages) {
+            const bool newModel = !stage.model.empty();
+            if (newModel) {
+                // The new model starts from its own defaults, not the old model's values.
+                const ReactionModel& model = *findModel(stage.model);
+                base.model = stage.model;
+                base.params.clear();
+                for (const ParamSpec& p : model.params())
+                    base.params[p.name] = p.defaultValue;
+                base.init = stage.init ? *stage.init : model.defaultInit();
+                base.dt = model.defaultDt();
+                base.paramMaps.clear(); // sessionFromJson refuses maps with a model change
+            }
+            if (stage.dt)
+                base.dt = *stage.dt;
             for (const auto& [name, value] : stage.params)
                 base.params[name] = value; // cumulative, as Turk's cascades change s
-            Segment segment{base, stage.freeze, stage.reset};
+            Segment segment{base, stage.freeze, stage.reset, newModel};
             segment.session.steps = stage.steps;
             segments.push_back(segment);
         }
@@ -72,7 +87,7 @@ std::vector<Segment> segmentsOf(const Session& session) {
     if (levels.empty())
         levels.push_back({session.width, session.height, session.steps});
     for (const ScheduleLevel& level : levels) {
-        Segment segment{base, std::nullopt, {}};
+        Segment segment{base, std::nullopt, {}, false};
         segment.session.width = level.width;
         segment.session.height = level.height;
         segment.session.steps = level.steps;
@@ -86,7 +101,6 @@ std::vector<Segment> segmentsOf(const Session& session) {
 
 RunResult runSession(const Session& session, const SimulatorFactory& makeSimulator,
                      const RunOptions& options) {
-    const ReactionModel& model = session.reactionModel();
     const std::vector<Segment> segments = segmentsOf(session);
 
     RunResult total;
@@ -94,8 +108,10 @@ RunResult runSession(const Session& session, const SimulatorFactory& makeSimulat
     std::vector<int> stepsPerSegment;
     State state;
     std::vector<std::uint8_t> frozen;
+    const ReactionModel* stateModel = &session.reactionModel(); // the model `state` holds
     for (std::size_t i = 0; i < segments.size(); ++i) {
         const Session& part = segments[i].session;
+        const ReactionModel& model = part.reactionModel();
         if (i == 0)
             // A batched sweep starts every tile from its own initial state.
             state = isBatchedSweep(part) ? batchedInitialState(part)
@@ -103,8 +119,15 @@ RunResult runSession(const Session& session, const SimulatorFactory& makeSimulat
                                                             part.width, part.height, part.seed);
         else if (state.width() != part.width || state.height() != part.height)
             state = resampleBilinear(state, part.width, part.height, part.edges);
+        // The rule reads the previous stage's result, with that stage's model.
         if (segments[i].freeze)
-            frozen = applyFreezeRule(*segments[i].freeze, state, model, std::move(frozen));
+            frozen = applyFreezeRule(*segments[i].freeze, state, *stateModel, std::move(frozen));
+        if (segments[i].newModel && i > 0) {
+            // A new model: a fresh start of its own; only the frozen mask carries over.
+            state =
+                makeInitialState(part.init, model, part.params, part.width, part.height, part.seed);
+            stateModel = &model;
+        }
         if (!segments[i].reset.empty() && !frozen.empty())
             resetFrozenCells(state, frozen, segments[i].reset, model);
 

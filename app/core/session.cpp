@@ -31,28 +31,12 @@ const ReactionModel& Session::reactionModel() const {
     return *m;
 }
 
-namespace {
-
-std::map<std::string, float> chemicalValues(const FieldReader& parent, const std::string& key,
-                                            const ReactionModel& model) {
-    std::map<std::string, float> values;
-    const json* j = parent.find(key);
-    if (!j)
-        return values;
-    FieldReader reader(*j, parent.source(), parent.path(key));
-    for (auto it = j->begin(); it != j->end(); ++it) {
-        if (model.chemicalIndex(it.key()) < 0) {
-            std::string names;
-            for (const ChemicalSpec& c : model.chemicals())
-                names += (names.empty() ? "" : ", ") + c.name;
-            reader.fail("field '" + reader.path(it.key()) + "'",
-                        "is not a chemical of model '" + model.name() + "' (chemicals: " + names +
-                            ")");
-        }
-        values[it.key()] = float(reader.numberValue(*it, it.key(), -1e6, 1e6));
-    }
-    return values;
+const ReactionModel& Session::outputModel() const {
+    return stages.empty() ? reactionModel()
+                          : stageModel(stages, stages.size() - 1, reactionModel());
 }
+
+namespace {
 
 std::array<float, 3> colour(const FieldReader& reader, const std::string& key,
                             std::array<float, 3> fallback) {
@@ -171,13 +155,26 @@ Session sessionFromJson(const json& root, const std::string& source) {
             top.failField("stages", "cannot be combined with a coarse-to-fine schedule");
         s.stages = stagesFromJson(*stages, source, *model);
         s.steps = 0;
-        for (const Stage& stage : s.stages)
+        bool changesModel = false;
+        for (const Stage& stage : s.stages) {
             s.steps += stage.steps;
+            changesModel = changesModel || !stage.model.empty();
+        }
+        // Anisotropic and generalized diffusion name the session model's chemicals.
+        if (changesModel && s.diffusion.type != DiffusionType::Isotropic)
+            top.failField("stages", "change the model, which needs isotropic diffusion (field "
+                                    "'diffusion' has type '" +
+                                        toString(s.diffusion.type) + "')");
     }
     if (const json* maps = top.find("param_maps")) {
         if (!s.schedule.empty())
             top.failField("param_maps", "cannot be combined with a coarse-to-fine schedule");
         s.paramMaps = paramMapsFromJson(*maps, source, *model);
+        for (const Stage& stage : s.stages)
+            if (!stage.model.empty())
+                top.failField("param_maps", "cannot be combined with a stage that changes the "
+                                            "model (they are maps of model '" +
+                                                model->name() + "' parameters)");
         for (const Stage& stage : s.stages)
             for (const auto& [name, value] : stage.params)
                 if (s.paramMaps.count(name))
@@ -188,45 +185,20 @@ Session sessionFromJson(const json& root, const std::string& source) {
     // A session's "init" replaces the model's default start whole: fields it
     // leaves out are empty, not inherited.
     s.init = model->defaultInit();
-    if (const json* init = top.find("init")) {
-        s.init = InitialCondition{};
-        FieldReader reader(*init, source, "init");
-        reader.rejectUnknown({"type", "base", "noise", "inside", "fraction", "count", "radius",
-                              "spacing", "jitter"});
-        const std::string type = reader.string("type", toString(s.init.type));
-        if (type == "noise")
-            s.init.type = InitialCondition::Type::Noise;
-        else if (type == "centre_square")
-            s.init.type = InitialCondition::Type::CentreSquare;
-        else if (type == "seed_spots")
-            s.init.type = InitialCondition::Type::SeedSpots;
-        else if (type == "jittered_grid")
-            s.init.type = InitialCondition::Type::JitteredGrid;
-        else
-            reader.failField("type", "is '" + type +
-                                         "', accepted: noise, centre_square, seed_spots, "
-                                         "jittered_grid");
-        if (reader.find("base"))
-            s.init.base = chemicalValues(reader, "base", *model);
-        if (reader.find("noise"))
-            s.init.noise = chemicalValues(reader, "noise", *model);
-        if (reader.find("inside"))
-            s.init.inside = chemicalValues(reader, "inside", *model);
-        s.init.squareFraction = float(reader.number("fraction", s.init.squareFraction, 0.0, 1.0));
-        s.init.spotCount = int(reader.integer("count", s.init.spotCount, 0, 100000));
-        s.init.spotRadius = float(reader.number("radius", s.init.spotRadius, 0.0, 10000.0));
-        s.init.spacing = float(reader.number("spacing", s.init.spacing, 2.0, 100000.0));
-        s.init.jitter = float(reader.number("jitter", s.init.jitter, 0.0, 1.0));
-    }
+    if (const json* init = top.find("init"))
+        s.init = initialConditionFromJson(*init, source, "init", *model);
 
     if (const json* cm = top.find("colormap")) {
         FieldReader reader(*cm, source, "colormap");
         reader.rejectUnknown({"name", "chemical", "low", "high"});
         s.colormap.name = reader.string("name", s.colormap.name);
         s.colormap.chemical = reader.string("chemical", "");
-        if (!s.colormap.chemical.empty() && model->chemicalIndex(s.colormap.chemical) < 0)
+        // The colours show the final state: the last stage's model's chemicals.
+        const ReactionModel& shown = s.outputModel();
+        if (!s.colormap.chemical.empty() && shown.chemicalIndex(s.colormap.chemical) < 0)
             reader.failField("chemical", "is '" + s.colormap.chemical +
-                                             "', not a chemical of model '" + model->name() + "'");
+                                             "', not a chemical of model '" + shown.name() + "'" +
+                                             (&shown != model ? " (the last stage's model)" : ""));
         s.colormap.low = colour(reader, "low", s.colormap.low);
         s.colormap.high = colour(reader, "high", s.colormap.high);
     }
@@ -259,24 +231,7 @@ json sessionToJson(const Session& s) {
     j["dt"] = s.dt;
     j["steps"] = s.steps;
     j["seed"] = s.seed;
-    json init;
-    init["type"] = toString(s.init.type);
-    init["base"] = s.init.base;
-    init["noise"] = s.init.noise;
-    if (s.init.type != InitialCondition::Type::Noise)
-        init["inside"] = s.init.inside;
-    if (s.init.type == InitialCondition::Type::CentreSquare)
-        init["fraction"] = s.init.squareFraction;
-    if (s.init.type == InitialCondition::Type::SeedSpots) {
-        init["count"] = s.init.spotCount;
-        init["radius"] = s.init.spotRadius;
-    }
-    if (s.init.type == InitialCondition::Type::JitteredGrid) {
-        init["spacing"] = s.init.spacing;
-        init["jitter"] = s.init.jitter;
-        init["radius"] = s.init.spotRadius;
-    }
-    j["init"] = init;
+    j["init"] = initialConditionToJson(s.init);
     json cm;
     cm["name"] = s.colormap.name;
     if (!s.colormap.chemical.empty())
@@ -396,6 +351,21 @@ void validateSession(const Session& s, const std::string& source) {
             os << source << ": parameter " << p.name << " = " << it->second << " is outside ["
                << p.min << ", " << p.max << "]";
             throw InputError(os.str());
+        }
+    }
+    for (std::size_t i = 0; i < s.stages.size(); ++i) {
+        const ReactionModel& m = stageModel(s.stages, i, *model);
+        for (const auto& [name, value] : s.stages[i].params) {
+            const ParamSpec* p = m.param(name);
+            if (!p)
+                throw InputError(source + ": stages[" + std::to_string(i) + "].params." + name +
+                                 " is not a parameter of model '" + m.name() + "'");
+            if (!std::isfinite(value) || value < p->min || value > p->max) {
+                std::ostringstream os;
+                os << source << ": stages[" << i << "].params." << name << " = " << value
+                   << " is outside [" << p->min << ", " << p->max << "]";
+                throw InputError(os.str());
+            }
         }
     }
     if (s.width < 1 || s.height < 1 || s.width > kMaxGridSide || s.height > kMaxGridSide)

@@ -73,6 +73,9 @@ struct Session {
 
     GridDomain domain() const { return {width, height, edges}; }
     const ReactionModel& reactionModel() const; // asserts a known model
+    // The model whose chemicals the final state holds: the last stage's that
+    // changes model (a cascade such as Turk's giraffe), else reactionModel().
+    const ReactionModel& outputModel() const;
 };
 
 // Largest accepted grid side; the GPU may allow less (checked at allocation).
