@@ -26,6 +26,10 @@ TEST(Cascade, LeopardResetsFrozenCells) {
     test::checkLeopardReset(cpu());
 }
 
+TEST(Cascade, ModelChangeFreezesByTheOldModelAndResetsTheNew) {
+    test::checkModelChangeFreezesAndResets(cpu());
+}
+
 TEST(ParamMaps, TheParameterAtACellIsTheMapsValue) {
     test::checkParamMapReadBack(cpu());
 }
