@@ -68,6 +68,51 @@ void checkLeopardReset(const SimulatorFactory& make) {
         }
 }
 
+void checkModelChangeFreezesAndResets(const SimulatorFactory& make) {
+    Session s = loadPreset("turk_giraffe");
+    s.width = s.height = 48;
+    s.stages[0].steps = 1500;
+    s.stages[1].steps = 300;
+    s.steps = 1800;
+    ASSERT_EQ(s.stages[1].model, "meinhardt_stripes");
+    const ReactionModel& turing = s.reactionModel();
+    const ReactionModel& stripes = s.outputModel();
+    ASSERT_EQ(stripes.name(), "meinhardt_stripes");
+
+    const State first = runStages(s, make, 1);
+    const RunResult both = runSession(s, make, RunOptions{});
+    ASSERT_EQ(first.channels(), int(turing.chemicals().size()));
+    ASSERT_EQ(both.state.channels(), int(stripes.chemicals().size()));
+    EXPECT_EQ(both.stepsDone, 1800);
+
+    // The rule reads the Turing result with the Turing model's chemicals.
+    const std::vector<std::uint8_t> frozen =
+        applyFreezeRule(*s.stages[1].freeze, first, turing, {});
+    // The new model's start: its default initial condition, same size and seed.
+    ParamValues params;
+    for (const ParamSpec& p : stripes.params())
+        params[p.name] = p.defaultValue;
+    const State start =
+        makeInitialState(stripes.defaultInit(), stripes, params, s.width, s.height, s.seed);
+    int frozenCount = 0, changed = 0;
+    for (std::size_t i = 0; i < frozen.size(); ++i) {
+        for (int c = 0; c < both.state.channels(); ++c) {
+            const std::string& name = stripes.chemicals()[std::size_t(c)].name;
+            auto reset = s.stages[1].reset.find(name);
+            if (frozen[i])
+                ASSERT_EQ(both.state.plane(c)[i],
+                          reset != s.stages[1].reset.end() ? reset->second : start.plane(c)[i])
+                    << "cell " << i << " chemical " << name;
+            else
+                changed += both.state.plane(c)[i] != start.plane(c)[i];
+        }
+        frozenCount += frozen[i];
+    }
+    EXPECT_GT(frozenCount, int(frozen.size()) / 20);
+    EXPECT_LT(frozenCount, int(frozen.size()) * 3 / 4);
+    EXPECT_GT(changed, int(frozen.size()) / 2);
+}
+
 void checkParamMapReadBack(const SimulatorFactory& make) {
     Session s = loadPreset("gs_coral");
     s.width = 40;

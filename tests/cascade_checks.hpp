@@ -11,6 +11,11 @@ namespace morphogen::test {
 void checkFrozenCellsExact(const SimulatorFactory& make);
 // A stage's reset values land on exactly the frozen cells.
 void checkLeopardReset(const SimulatorFactory& make);
+// A stage that changes model (Turk's giraffe: Turing spots, then Meinhardt's
+// stripes): its freeze rule reads the Turing result, the frozen cells hold the
+// reset values of the new model's chemicals bit for bit (and the new model's
+// start for chemicals not reset), the other cells run the new model.
+void checkModelChangeFreezesAndResets(const SimulatorFactory& make);
 // With F mapped over x and no diffusion, one Gray-Scott step from u = v = 0
 // gives u = dt F(x): the parameter each cell used, read back.
 void checkParamMapReadBack(const SimulatorFactory& make);

@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "core/param_map.hpp"
 #include "core/session.hpp"
+#include "test_support.hpp"
 
 using namespace morphogen;
 
@@ -24,6 +25,38 @@ TEST(Cascade, FrozenCellsKeepTheirValuesBitForBit) {
 
 TEST(Cascade, LeopardResetsFrozenCells) {
     test::checkLeopardReset(cpu());
+}
+
+TEST(Cascade, ModelChangeFreezesByTheOldModelAndResetsTheNew) {
+    test::checkModelChangeFreezesAndResets(cpu());
+}
+
+TEST(Cascade, AModelChangingStageStartsFromTheNewModelsDefaults) {
+    Session s = loadPreset("turk_giraffe");
+    s.width = s.height = 32;
+    s.stages[0].steps = 200;
+    s.stages[1].steps = 50;
+    s.steps = 250;
+    auto run = [](const Session& session) { return runSession(session, cpu(), {}).state; };
+    // No "dt": the new model's default (1), not the session's 0.18.
+    Session noDt = s;
+    noDt.stages[1].dt.reset();
+    Session dt1 = s;
+    dt1.stages[1].dt = 1.0f;
+    Session dtHalf = s;
+    dtHalf.stages[1].dt = 0.5f;
+    EXPECT_EQ(test::maxAbsDifference(run(noDt), run(dt1)), 0.0f);
+    EXPECT_GT(test::maxAbsDifference(run(noDt), run(dtHalf)), 1e-4f);
+    // Parameters: the new model's defaults plus the stage's, not the session's.
+    Session explicitDefaults = s;
+    for (const ParamSpec& p : findModel("meinhardt_stripes")->params())
+        explicitDefaults.stages[1].params.emplace(p.name, p.defaultValue);
+    EXPECT_EQ(test::maxAbsDifference(run(s), run(explicitDefaults)), 0.0f);
+    // A stage "init" replaces the new model's default start.
+    Session init = s;
+    init.stages[1].init = findModel("meinhardt_stripes")->defaultInit();
+    init.stages[1].init->base["g1"] = 0.5f;
+    EXPECT_GT(test::maxAbsDifference(run(s), run(init)), 1e-4f);
 }
 
 TEST(ParamMaps, TheParameterAtACellIsTheMapsValue) {

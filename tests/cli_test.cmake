@@ -164,6 +164,15 @@ run(2 "expected PARAM:MIN:MAX" map --model gray_scott --x k --y F:0.01:0.09 --ou
 run(2 "is not a parameter of gray_scott" map --model gray_scott --x q:0:1 --y F:0.01:0.09 --out bad.png)
 run(2 "must sweep different parameters" map --model gray_scott --x F:0.01:0.02 --y F:0.01:0.09 --out bad.png)
 run(2 "need MIN < MAX" map --model gray_scott --x F:0.05:0.01 --y k:0.04:0.07 --out bad.png)
+run(2 "switches from model 'turing_turk' to 'meinhardt_stripes'" map --preset turk_giraffe --x s:0.03:0.06 --y beta_noise:0:3 --out bad.png)
+# A cascade that changes model renders with the last model's colours and reproduces itself.
+run(0 "" render --preset turk_giraffe --size 24 --backend cpu --out giraffe.png)
+run(0 "" render --session giraffe.json --backend cpu --out giraffe2.png)
+file(READ "${WORK}/giraffe.json" g1)
+file(READ "${WORK}/giraffe2.json" g2)
+if(NOT g1 STREQUAL g2)
+  message(SEND_ERROR "the model-changing cascade's session does not reproduce itself")
+endif()
 
 # A parameter sweep: a contact sheet and per-tile stats, one CSV row per tile.
 run(0 "" sweep --model gray_scott --x k:0.045:0.07 --y F:0.01:0.09 --grid 3x3 --tile 16 --steps 20 --backend cpu --out sweep)

@@ -149,3 +149,100 @@ TEST(Session, InitReplacesTheModelDefaultWhole) {
     const Session s = loadPreset("mcgraw_steady");
     EXPECT_TRUE(s.init.noise.empty());
 }
+
+TEST(Session, ModelChangingStagesParseAndRoundTrip) {
+    const char* text = R"({"model": "turing_turk", "size": 32,
+        "stages": [{"steps": 10},
+                   {"steps": 20, "model": "meinhardt_stripes", "dt": 0.5,
+                    "init": {"type": "seed_spots", "count": 2, "radius": 0,
+                             "base": {"g1": 0.75, "substrate": 1}, "inside": {"substrate": 1.1}},
+                    "params": {"Dg": 0.02},
+                    "freeze": {"chemical": "b", "min": 0, "max": 4},
+                    "reset": {"g1": 1.5, "s2": 0}},
+                   {"steps": 5, "params": {"Dg": 0.01}}],
+        "colormap": {"chemical": "s1"}})";
+    const Session s = sessionFromJson(json::parse(text), "cascade.json");
+    ASSERT_EQ(s.stages.size(), 3u);
+    EXPECT_EQ(s.steps, 35);
+    EXPECT_EQ(s.reactionModel().name(), "turing_turk");
+    EXPECT_EQ(s.outputModel().name(), "meinhardt_stripes");
+    EXPECT_EQ(stageModel(s.stages, 0, s.reactionModel()).name(), "turing_turk");
+    EXPECT_EQ(stageModel(s.stages, 2, s.reactionModel()).name(), "meinhardt_stripes");
+    const Stage& change = s.stages[1];
+    EXPECT_EQ(change.model, "meinhardt_stripes");
+    ASSERT_TRUE(change.dt.has_value());
+    EXPECT_EQ(*change.dt, 0.5f);
+    ASSERT_TRUE(change.init.has_value());
+    EXPECT_EQ(change.init->type, InitialCondition::Type::SeedSpots);
+    EXPECT_EQ(change.init->spotCount, 2);
+    EXPECT_EQ(change.init->inside.at("substrate"), 1.1f);
+    EXPECT_EQ(change.params.at("Dg"), 0.02f);
+    EXPECT_EQ(change.freeze->chemical, "b");
+    EXPECT_EQ(change.reset.at("g1"), 1.5f);
+    EXPECT_TRUE(s.stages[2].model.empty());
+    EXPECT_FALSE(s.stages[2].init.has_value());
+    EXPECT_NO_THROW(validateSession(s, "cascade.json"));
+    // The session reproduces itself.
+    const json j = sessionToJson(s);
+    EXPECT_EQ(sessionToJson(sessionFromJson(j, "again")), j);
+    EXPECT_EQ(j["stages"][1]["model"], "meinhardt_stripes");
+    EXPECT_FALSE(j["stages"][2].contains("model"));
+
+    // Stage parameters are checked against their stage's model.
+    Session bad = s;
+    bad.stages[1].params["Dg"] = 100.0f;
+    EXPECT_THROW(validateSession(bad, "x"), InputError);
+    bad = s;
+    bad.stages[2].params["s"] = 0.1f; // turing_turk's, not meinhardt_stripes'
+    EXPECT_THROW(validateSession(bad, "x"), InputError);
+}
+
+TEST(Session, BrokenModelChangingStagesAreNamed) {
+    struct Case {
+        const char* stage1; // the second stage of a turing_turk cascade
+        const char* extra;  // more top-level fields
+        const char* mustMention;
+    };
+    const Case cases[] = {
+        {R"({"model": "zebra"})", "", "'stages[1].model' is 'zebra', not a known model (known: "},
+        {R"({"model": 7})", "", "'stages[1].model' must be a string"},
+        {R"({"init": {"base": {"a": 1}}})", "",
+         "'stages[1].init' is only accepted on a stage that sets 'model'"},
+        {R"({"model": "meinhardt_stripes", "params": {"s": 0.1}})", "",
+         "'stages[1].params.s' is not a parameter of model 'meinhardt_stripes'"},
+        {R"({"model": "meinhardt_stripes", "params": {"Dg": -1}})", "",
+         "'stages[1].params.Dg' is -1"},
+        {R"({"model": "meinhardt_stripes", "freeze": {"chemical": "g1"}})", "",
+         "'stages[1].freeze.chemical' is 'g1', not a chemical of model 'turing_turk' (the "
+         "previous stage's model"},
+        {R"({"model": "meinhardt_stripes", "reset": {"a": 4}})", "",
+         "'stages[1].reset.a' is not a chemical of model 'meinhardt_stripes'"},
+        {R"({"model": "meinhardt_stripes", "init": {"base": {"a": 1}}})", "",
+         "'stages[1].init.base.a' is not a chemical of model 'meinhardt_stripes'"},
+        {R"({"model": "meinhardt_stripes", "init": {"type": "blob"}})", "",
+         "'stages[1].init.type' is 'blob'"},
+        {R"({"model": "meinhardt_stripes", "init": {"colour": 1}})", "",
+         "unknown field 'stages[1].init.colour'"},
+        {R"({"modle": "meinhardt_stripes"})", "", "unknown field 'stages[1].modle'"},
+        {R"({"model": "meinhardt_stripes", "dt": -1})", "", "'stages[1].dt' is -1"},
+        {R"({"model": "meinhardt_stripes"})", R"(, "colormap": {"chemical": "b"})",
+         "'colormap.chemical' is 'b', not a chemical of model 'meinhardt_stripes' (the last "
+         "stage's model)"},
+        {R"({"model": "meinhardt_stripes"})",
+         R"(, "param_maps": {"s": {"field": "linear_x", "range": [0.05, 0.1]}})",
+         "'param_maps' cannot be combined with a stage that changes the model"},
+    };
+    for (const Case& c : cases) {
+        const std::string text =
+            std::string(R"({"model": "turing_turk", "stages": [{"steps": 1}, )") + c.stage1 + "]" +
+            c.extra + "}";
+        SCOPED_TRACE(text);
+        const std::string message = errorFor(text);
+        EXPECT_NE(message.find("broken.json"), std::string::npos) << message;
+        EXPECT_NE(message.find(c.mustMention), std::string::npos) << message;
+    }
+    EXPECT_NE(errorFor(R"({"model": "turing_turk",
+                           "stages": [{"steps": 1, "model": "meinhardt_stripes"}]})")
+                  .find("'stages[0].model' cannot be set on the first stage"),
+              std::string::npos);
+}

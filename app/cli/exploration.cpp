@@ -32,8 +32,15 @@ Session explorationBase(const std::string& modelName, const std::string& preset,
                         const std::string& name) {
     if (modelName.empty() == preset.empty())
         throw InputError("give one of --model NAME or --preset NAME");
-    if (!preset.empty())
-        return loadPreset(preset);
+    if (!preset.empty()) {
+        Session s = loadPreset(preset);
+        // Maps and sweeps vary one model's parameters over one run.
+        if (&s.outputModel() != &s.reactionModel())
+            throw InputError("--preset " + preset + " switches from model '" + s.model + "' to '" +
+                             s.outputModel().name() + "' in its stages; " + name +
+                             " needs a single-model preset or --model");
+        return s;
+    }
     const ReactionModel* model = findModel(modelName);
     if (!model) {
         std::string names;

@@ -26,9 +26,22 @@ namespace morphogen {
 // c = 0.01, alpha = 0.04, beta = 0.06, gamma = 0.04, rho0 = rho1 = 0 and his
 // two diffusion rates Dx -> Dg (g1, g2) and Dy -> Ds (s1, s2). The defaults
 // keep these rates and his diffusion rates unscaled: Dg = 0.009, Ds = 0.2 on
-// the 5-point Laplacian (neighbours - 4 centre) with dt = 1, which gives
-// stripes about 6-8 cells wide at the default Dg. Explicit Euler needs
-// Ds dt <= 0.25 for the 5-point stencil, so Ds above ~0.24 needs a smaller dt.
+// the 5-point Laplacian (neighbours - 4 centre) with dt = 1. Unlike Turk's
+// Turing rates (turing_turk.hpp) they need no scaling on our grid: the stripe
+// period is ~8.5 cells (each colour ~4 cells wide), growing like sqrt(Dg)
+// (measured at 128^2: Dg 0.02 ~13 cells, Turk's lionfish Dg 0.1 ~32). Dg
+// must stay well below Ds (Dg = Ds = 0.2 gives a single blob). Explicit
+// Euler needs Ds dt <= 0.25 for the 5-point stencil: Ds above ~0.24 needs a
+// smaller dt.
+//
+// The local kinetics of g and r are an activator-inhibitor pair that is only
+// stable while r is faster than g (beta > alpha: damped oscillations with a
+// period of ~130 time units). A cell that also loses g by diffusion to frozen
+// neighbours with g ~ 0 (a pocket in a cascade) has an effectively larger
+// alpha, and its oscillation can grow into spikes that explicit Euler at
+// dt = 1 turns into a blow-up (stopped by the sane-range check): seen with
+// turk_giraffe's rule widened to b <= 6 (dt 0.5 got through). Freeze rules
+// that leave wider gaps (turk_giraffe: b <= 3) avoid such pockets.
 //
 // r is divided by: it is clamped to >= 1e-4 after every step, and the reaction
 // divides by max(r, 1e-4), so a start or reset with r = 0 cannot produce a NaN.
