@@ -6,6 +6,7 @@
 #include "core/models/turing_mcgraw.hpp"
 #include "core/models/turing_turk.hpp"
 #include "core/models/witkin_kass.hpp"
+#include "core/models/witkin_kass_multi.hpp"
 
 namespace morphogen {
 
@@ -40,7 +41,14 @@ std::vector<const ReactionModel*> allModels() {
     static const TuringTurkModel turingTurk;
     static const TuringMcGrawModel turingMcGraw;
     static const WitkinKassModel witkinKass;
-    return {&grayScott, &turingTurk, &turingMcGraw, &witkinKass};
+    static const WitkinKassMd2 witkinKassMd2;
+    static const WitkinKassMd3 witkinKassMd3;
+    static const WitkinKassMd5 witkinKassMd5;
+    static const WitkinKassDa2 witkinKassDa2;
+    static const WitkinKassDa3 witkinKassDa3;
+    static const WitkinKassDa5 witkinKassDa5;
+    return {&grayScott,     &turingTurk,    &turingMcGraw,  &witkinKass,    &witkinKassMd2,
+            &witkinKassMd3, &witkinKassMd5, &witkinKassDa2, &witkinKassDa3, &witkinKassDa5};
 }
 
 const ReactionModel* findModel(const std::string& name) {
