@@ -16,6 +16,14 @@ namespace morphogen {
 //   dC/dt = A : H(C) - b C + R
 //   M-D (eq. 14): R = k if max_j D_j > threshold, else 0 (woven threads)
 //   D-A (eq. 15): R = k if |max_j D_j| > |min_j D_j|, else 0 (mazes)
+// Scale: the pattern's width comes from the diffusion lengths sqrt(D a^2 / b)
+// (a = a1, a2 of the tensors), about 1-1.5 cells with section 6.2's b = 1,
+// D = 1. The presets use b = 0.25 (twice the lengths: patterns ~13 cells
+// across), dt 0.05 (the 3x3 kernels' explicit limit is ~0.08 at D = 1) and
+// 4000 steps (t = 200, 50 dissipation times). M-D's threshold sets how much
+// of the plane fires: with k = 1, b = 0.25 the differences stay within a few
+// tenths; 0 fires almost everywhere, ~0.1 gives lattices and threads, and
+// above ~0.2 (2 pairs) the pattern dies out.
 enum class WkMultiReaction {
     MaxOfDifferences, // M-D, eq. 14
     DifferenceOfAbs,  // D-A, eq. 15
