@@ -26,3 +26,8 @@ TEST(GpuCascade, LeopardResetsFrozenCells) {
 TEST(GpuParamMaps, TheParameterAtACellIsTheMapsValue) {
     test::checkParamMapReadBack(gpu());
 }
+
+// Three chemicals on one texture, then six on two (MRT) after the model change.
+TEST(GpuCascade, ModelChangeFreezesByTheOldModelAndResetsTheNew) {
+    test::checkModelChangeFreezesAndResets(gpu());
+}

@@ -55,6 +55,7 @@ Session explorationBase(const std::string& modelName, const std::string& preset,
         s.params[p.name] = p.defaultValue;
     s.dt = model->defaultDt();
     s.init = model->defaultInit();
+    s.diffusion = model->defaultDiffusion();
     s.steps = 10000;
     s.colormap.name = "viridis";
     return s;

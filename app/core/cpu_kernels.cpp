@@ -11,6 +11,7 @@
 #include "core/models/turing_mcgraw.hpp"
 #include "core/models/turing_turk.hpp"
 #include "core/models/witkin_kass.hpp"
+#include "core/models/witkin_kass_multi.hpp"
 
 // GCC builds an AVX2 copy of each fused kernel beside the baseline x86-64
 // (SSE2) one and picks per machine when the program loads, so one binary
@@ -287,6 +288,18 @@ template <class Pick> StepRowsKernel withCell(const ReactionModel& model, const 
         return pick(Tag<WitkinKassModel::Cell>());
     if (dynamic_cast<const MeinhardtStripesModel*>(&model) != nullptr)
         return pick(Tag<MeinhardtStripesModel::Cell>());
+    if (dynamic_cast<const WitkinKassMd2*>(&model) != nullptr)
+        return pick(Tag<WitkinKassMd2::Cell>());
+    if (dynamic_cast<const WitkinKassMd3*>(&model) != nullptr)
+        return pick(Tag<WitkinKassMd3::Cell>());
+    if (dynamic_cast<const WitkinKassMd5*>(&model) != nullptr)
+        return pick(Tag<WitkinKassMd5::Cell>());
+    if (dynamic_cast<const WitkinKassDa2*>(&model) != nullptr)
+        return pick(Tag<WitkinKassDa2::Cell>());
+    if (dynamic_cast<const WitkinKassDa3*>(&model) != nullptr)
+        return pick(Tag<WitkinKassDa3::Cell>());
+    if (dynamic_cast<const WitkinKassDa5*>(&model) != nullptr)
+        return pick(Tag<WitkinKassDa5::Cell>());
     return nullptr;
 }
 

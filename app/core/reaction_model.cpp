@@ -7,6 +7,7 @@
 #include "core/models/turing_mcgraw.hpp"
 #include "core/models/turing_turk.hpp"
 #include "core/models/witkin_kass.hpp"
+#include "core/models/witkin_kass_multi.hpp"
 
 namespace morphogen {
 
@@ -42,7 +43,15 @@ std::vector<const ReactionModel*> allModels() {
     static const TuringMcGrawModel turingMcGraw;
     static const WitkinKassModel witkinKass;
     static const MeinhardtStripesModel meinhardtStripes;
-    return {&grayScott, &turingTurk, &turingMcGraw, &witkinKass, &meinhardtStripes};
+    static const WitkinKassMd2 witkinKassMd2;
+    static const WitkinKassMd3 witkinKassMd3;
+    static const WitkinKassMd5 witkinKassMd5;
+    static const WitkinKassDa2 witkinKassDa2;
+    static const WitkinKassDa3 witkinKassDa3;
+    static const WitkinKassDa5 witkinKassDa5;
+    return {&grayScott,     &turingTurk,    &turingMcGraw,    &witkinKass,
+            &witkinKassMd2, &witkinKassMd3, &witkinKassMd5,   &witkinKassDa2,
+            &witkinKassDa3, &witkinKassDa5, &meinhardtStripes};
 }
 
 const ReactionModel* findModel(const std::string& name) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/diffusion_spec.hpp"
 #include "core/initial_condition.hpp"
 #include "core/state.hpp"
 
@@ -75,10 +76,14 @@ public:
     float defaultDt() const { return m_defaultDt; }
     // The start used when a session names none.
     const InitialCondition& defaultInit() const { return m_defaultInit; }
+    // The diffusion used when a session has no "diffusion" block (isotropic
+    // unless a model needs more to make any pattern, as Witkin-Kass's
+    // multi-orientation models do). A session's block replaces it whole.
+    const DiffusionSpec& defaultDiffusion() const { return m_defaultDiffusion; }
     std::string glslPath() const {
         return "glsl/models/" + (m_glslFile.empty() ? m_name : m_glslFile) + ".glsl";
     }
-    // #defines the snippet is compiled with (one snippet can serve a family of
+    // "NAME VALUE" #defines the snippet is compiled with (one snippet can serve a family of
     // models, such as Witkin-Kass's 2-, 3- and 5-direction systems).
     const std::vector<std::string>& glslDefines() const { return m_glslDefines; }
 
@@ -107,6 +112,7 @@ protected:
     int m_displayChemical = 0;
     float m_defaultDt = 1.0f;
     InitialCondition m_defaultInit;
+    DiffusionSpec m_defaultDiffusion;
 };
 
 // All built-in models, by name.

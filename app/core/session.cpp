@@ -113,6 +113,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
     else
         top.failField("edges", "is '" + edges + "', accepted: periodic, clamped");
 
+    // Like "init", a session's "diffusion" replaces the model's default whole.
+    s.diffusion = model->defaultDiffusion();
     if (const json* diffusion = top.find("diffusion"))
         s.diffusion = diffusionFromJson(*diffusion, source, *model);
 
