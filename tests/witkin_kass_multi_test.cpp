@@ -156,9 +156,8 @@ TEST(WitkinKassMulti, SixModelsWithPairedChemicalsAndOneSnippet) {
             EXPECT_EQ(c.diffusionParam, "D");
         EXPECT_EQ(model->param("threshold") != nullptr, md);
         EXPECT_EQ(model->glslPath(), "glsl/models/witkin_kass_multi.glsl");
-        const std::vector<std::string> defines = {"#define WK_PAIRS " + std::to_string(pairs),
-                                                  std::string("#define WK_REACTION ") +
-                                                      (md ? "0" : "1")};
+        const std::vector<std::string> defines = {"WK_PAIRS " + std::to_string(pairs),
+                                                  std::string("WK_REACTION ") + (md ? "0" : "1")};
         EXPECT_EQ(model->glslDefines(), defines);
     }
 }
