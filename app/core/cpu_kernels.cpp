@@ -303,12 +303,21 @@ template <class Pick> StepRowsKernel withCell(const ReactionModel& model, const 
     return nullptr;
 }
 
+// Beyond four chemicals stepRows' per-cell arrays stop vectorising (GCC keeps
+// them in memory), and the generic path's separate row passes win; see
+// fusedExplicitStep.
+constexpr int kMaxFusedChemicals = 4;
+
 template <class Cell, class Term> StepRowsKernel explicitIf(const StepConstants& k) {
     assert(Cell::kChemicals == k.chemicals);
-    for (int c = 0; c < Cell::kChemicals; ++c)
-        if (Term(k, c).isZero() == Cell::diffuses(c))
-            return nullptr;
-    return &stepRows<Cell, Term>;
+    if constexpr (Cell::kChemicals > kMaxFusedChemicals) {
+        return nullptr;
+    } else {
+        for (int c = 0; c < Cell::kChemicals; ++c)
+            if (Term(k, c).isZero() == Cell::diffuses(c))
+                return nullptr;
+        return &stepRows<Cell, Term>;
+    }
 }
 
 } // namespace
@@ -337,8 +346,13 @@ StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants
 StepRowsKernel fusedRhsPass(const ReactionModel& model, const StepConstants& k) {
     if (k.hasParamMaps())
         return nullptr;
-    return withCell(
-        model, [](auto tag) -> StepRowsKernel { return &rhsRows<typename decltype(tag)::Type>; });
+    return withCell(model, [](auto tag) -> StepRowsKernel {
+        using Cell = typename decltype(tag)::Type;
+        if constexpr (Cell::kChemicals > kMaxFusedChemicals)
+            return nullptr;
+        else
+            return &rhsRows<Cell>;
+    });
 }
 
 SweepRowsKernel fusedSweep(const StepConstants& k) {
