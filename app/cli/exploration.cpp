@@ -42,12 +42,8 @@ Session explorationBase(const std::string& modelName, const std::string& preset,
         return s;
     }
     const ReactionModel* model = findModel(modelName);
-    if (!model) {
-        std::string names;
-        for (const ReactionModel* m : allModels())
-            names += (names.empty() ? "" : ", ") + m->name();
-        throw InputError("--model '" + modelName + "' is unknown (known: " + names + ")");
-    }
+    if (!model)
+        throw InputError("--model '" + modelName + "' is unknown (known: " + modelNames() + ")");
     Session s;
     s.name = name;
     s.model = model->name();

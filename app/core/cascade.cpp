@@ -47,30 +47,7 @@ const ReactionModel& stageModel(const std::vector<Stage>& stages, std::size_t in
     return sessionModel;
 }
 
-namespace {
-
-std::string modelNames() {
-    std::string names;
-    for (const ReactionModel* m : allModels())
-        names += (names.empty() ? "" : ", ") + m->name();
-    return names;
-}
-
-std::string chemicalNames(const ReactionModel& model) {
-    std::string names;
-    for (const ChemicalSpec& c : model.chemicals())
-        names += (names.empty() ? "" : ", ") + c.name;
-    return names;
-}
-
-std::string paramNames(const ReactionModel& model) {
-    std::string names;
-    for (const ParamSpec& p : model.params())
-        names += (names.empty() ? "" : ", ") + p.name;
-    return names;
-}
-
-} // namespace
+namespace {} // namespace
 
 std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
                                   const ReactionModel& sessionModel) {
@@ -112,7 +89,7 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
                 const ParamSpec* spec = model->param(it.key());
                 if (!spec)
                     p.failField(it.key(), "is not a parameter of model '" + model->name() +
-                                              "' (parameters: " + paramNames(*model) + ")");
+                                              "' (parameters: " + model->paramNames() + ")");
                 stage.params[it.key()] = float(p.numberValue(*it, it.key(), spec->min, spec->max));
             }
         }
@@ -128,7 +105,7 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
                                 (previous != model ? "' (the previous stage's model, whose "
                                                      "result the rule reads; chemicals: "
                                                    : "' (chemicals: ") +
-                                chemicalNames(*previous) + ")");
+                                previous->chemicalNames() + ")");
             rule.min = float(f.number("min", -1e30, -1e30, 1e30));
             rule.max = float(f.number("max", 1e30, -1e30, 1e30));
             if (rule.min > rule.max)
@@ -140,7 +117,7 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
             for (auto it = reset->begin(); it != reset->end(); ++it) {
                 if (model->chemicalIndex(it.key()) < 0)
                     r.failField(it.key(), "is not a chemical of model '" + model->name() +
-                                              "' (chemicals: " + chemicalNames(*model) + ")");
+                                              "' (chemicals: " + model->chemicalNames() + ")");
                 stage.reset[it.key()] = float(r.numberValue(*it, it.key(), -1e6, 1e6));
             }
         }

@@ -36,17 +36,10 @@ const std::pair<OrientationField::Type, const char*> kFieldNames[] = {
     {OrientationField::Type::Blend, "blend"},
     {OrientationField::Type::ImageGradient, "image_gradient"}};
 
-std::string chemicalList(const ReactionModel& model) {
-    std::string names;
-    for (const ChemicalSpec& c : model.chemicals())
-        names += (names.empty() ? "" : ", ") + c.name;
-    return names;
-}
-
 void checkChemical(const FieldReader& reader, const std::string& key, const ReactionModel& model) {
     if (model.chemicalIndex(key) < 0)
         reader.failField(key, "is not a chemical of model '" + model.name() +
-                                  "' (chemicals: " + chemicalList(model) + ")");
+                                  "' (chemicals: " + model.chemicalNames() + ")");
 }
 
 OrientationField fieldFromJson(const json& j, const std::string& source, const std::string& path) {

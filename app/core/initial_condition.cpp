@@ -46,14 +46,10 @@ std::map<std::string, float> chemicalValues(const FieldReader& parent, const std
         return values;
     FieldReader reader(*j, parent.source(), parent.path(key));
     for (auto it = j->begin(); it != j->end(); ++it) {
-        if (model.chemicalIndex(it.key()) < 0) {
-            std::string names;
-            for (const ChemicalSpec& c : model.chemicals())
-                names += (names.empty() ? "" : ", ") + c.name;
+        if (model.chemicalIndex(it.key()) < 0)
             reader.fail("field '" + reader.path(it.key()) + "'",
-                        "is not a chemical of model '" + model.name() + "' (chemicals: " + names +
-                            ")");
-        }
+                        "is not a chemical of model '" + model.name() +
+                            "' (chemicals: " + model.chemicalNames() + ")");
         values[it.key()] = float(reader.numberValue(*it, it.key(), -1e6, 1e6));
     }
     return values;

@@ -25,6 +25,27 @@ const ParamSpec* ReactionModel::param(const std::string& name) const {
     return nullptr;
 }
 
+namespace {
+template <class Range, class Name> std::string joinNames(const Range& range, const Name& name) {
+    std::string names;
+    for (const auto& item : range)
+        names += (names.empty() ? "" : ", ") + name(item);
+    return names;
+}
+} // namespace
+
+std::string ReactionModel::chemicalNames() const {
+    return joinNames(m_chemicals, [](const ChemicalSpec& c) { return c.name; });
+}
+
+std::string ReactionModel::paramNames() const {
+    return joinNames(m_params, [](const ParamSpec& p) { return p.name; });
+}
+
+std::string modelNames() {
+    return joinNames(allModels(), [](const ReactionModel* m) { return m->name(); });
+}
+
 std::vector<float> ReactionModel::packParams(const ParamValues& values) const {
     std::vector<float> packed;
     packed.reserve(m_params.size());

@@ -89,6 +89,9 @@ public:
 
     int chemicalIndex(const std::string& name) const; // -1 when absent
     const ParamSpec* param(const std::string& name) const;
+    // "a, b, beta": for error messages that list what is accepted.
+    std::string chemicalNames() const;
+    std::string paramNames() const;
 
     // Parameter values in declaration order, the layout react() reads.
     std::vector<float> packParams(const ParamValues& values) const;
@@ -118,5 +121,7 @@ protected:
 // All built-in models, by name.
 const ReactionModel* findModel(const std::string& name);
 std::vector<const ReactionModel*> allModels();
+// "gray_scott, turing_turk, ...": for error messages.
+std::string modelNames();
 
 } // namespace morphogen

@@ -51,13 +51,6 @@ std::array<float, 3> colour(const FieldReader& reader, const std::string& key,
     return rgb;
 }
 
-std::string paramNames(const ReactionModel& model) {
-    std::string names;
-    for (const ParamSpec& p : model.params())
-        names += (names.empty() ? "" : ", ") + p.name;
-    return names;
-}
-
 } // namespace
 
 Session sessionFromJson(const json& root, const std::string& source) {
@@ -70,12 +63,9 @@ Session sessionFromJson(const json& root, const std::string& source) {
     s.description = top.string("description", "");
     s.model = top.string("model", s.model);
     const ReactionModel* model = findModel(s.model);
-    if (!model) {
-        std::string names;
-        for (const ReactionModel* m : allModels())
-            names += (names.empty() ? "" : ", ") + m->name();
-        top.failField("model", "is '" + s.model + "', not a known model (known: " + names + ")");
-    }
+    if (!model)
+        top.failField("model",
+                      "is '" + s.model + "', not a known model (known: " + modelNames() + ")");
 
     for (const ParamSpec& p : model->params())
         s.params[p.name] = p.defaultValue;
@@ -86,7 +76,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
             if (!spec)
                 reader.fail("field 'params." + it.key() + "'",
                             "is not a parameter of model '" + model->name() +
-                                "' (parameters: " + paramNames(*model) + ")");
+                                "' (parameters: " + model->paramNames() + ")");
             s.params[it.key()] = float(reader.numberValue(*it, it.key(), spec->min, spec->max));
         }
     }
@@ -310,13 +300,13 @@ void applyParamOverride(Session& session, const std::string& assignment) {
     const ReactionModel& model = session.reactionModel();
     if (eq == std::string::npos || eq == 0)
         throw InputError("--param '" + assignment + "': expected name=value (parameters of " +
-                         model.name() + ": " + paramNames(model) + ")");
+                         model.name() + ": " + model.paramNames() + ")");
     const std::string name = assignment.substr(0, eq);
     const std::string text = assignment.substr(eq + 1);
     const ParamSpec* spec = model.param(name);
     if (!spec)
         throw InputError("--param '" + assignment + "': '" + name + "' is not a parameter of " +
-                         model.name() + " (parameters: " + paramNames(model) + ")");
+                         model.name() + " (parameters: " + model.paramNames() + ")");
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0' || !std::isfinite(v))
