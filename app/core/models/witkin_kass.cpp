@@ -12,7 +12,9 @@ WitkinKassModel::WitkinKassModel() {
     m_params = {{"k", 1.0f, -100.0f, 100.0f, "reaction constant added where C+ > C-"},
                 {"b", 1.0f, 0.0f, 100.0f, "dissipation rate"},
                 {"Dp", 1.0f, 0.0f, 100.0f, "diffusion rate of C+ (times its tensor)"},
-                {"Dm", 1.0f, 0.0f, 100.0f, "diffusion rate of C- (times its tensor)"}};
+                {"Dm", 1.0f, 0.0f, 100.0f, "diffusion rate of C- (times its tensor)"},
+                {"threshold", 0.0f, -100.0f, 100.0f,
+                 "the reaction fires where C+ - C- exceeds it (eq. 13: 0)"}};
     m_displayChemical = 0;
     // Section 6.2: h = 1, dt = 0.02, both morphogens start as noise in [-1, 1].
     m_defaultDt = 0.02f;
