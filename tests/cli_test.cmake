@@ -52,6 +52,17 @@ run(2 "broken.json: field 'params.F' must be a number" render --session broken.j
 file(WRITE "${WORK}/truncated.json" "{\"model\": ")
 run(2 "truncated.json: not valid JSON" render --session truncated.json --out a.png)
 run(2 "cannot open session file" render --session none.json --out a.png)
+# Every cascade stage's time step is checked before the run, not only the first.
+file(WRITE "${WORK}/stage_dt.json" "{\"model\": \"turing_turk\", \"size\": 16, \"stages\": [{\"steps\": 5}, {\"steps\": 5, \"dt\": 5}]}")
+run(0 "stage 2: dt 5 exceeds the explicit stability limit" render --session stage_dt.json --backend cpu --out stage_dt.png)
+file(READ "${WORK}/stage_dt.json" stage_dt)
+string(FIND "${stage_dt}" "\"dt\": 5" at)
+if(NOT at EQUAL -1)
+  message(SEND_ERROR "the written session still has stage 2's unstable dt: ${stage_dt}")
+endif()
+# A cascade counts its steps per stage: --steps would misreport progress.
+run(2 "--steps does not apply to a session with cascade \"stages\"" render --preset turk_cheetah --steps 10 --out a.png)
+run(2 "--steps does not apply to a session with cascade \"stages\"" map --preset turk_cheetah --x s:0.03:0.06 --y beta_noise:0:3 --steps 10 --out a.png)
 if(EXISTS "${WORK}/a.png")
   message(SEND_ERROR "a failed render left a.png behind")
 endif()

@@ -53,7 +53,7 @@ void map(const MapFlags& f) {
     s.width = s.height = f.size;
     s.schedule.clear();
     if (f.steps >= 0)
-        s.steps = f.steps;
+        applySteps(s, f.steps, "--steps");
     if (f.seed >= 0)
         s.seed = std::uint64_t(f.seed);
     for (const std::string& p : f.params)

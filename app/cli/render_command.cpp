@@ -112,7 +112,7 @@ Session buildSession(const RenderFlags& f) {
     if (!f.size.empty())
         parseSize(f.size, s);
     if (f.steps >= 0)
-        s.steps = f.steps;
+        applySteps(s, f.steps, "--steps");
     if (!f.integrator.empty()) {
         if (f.integrator == "explicit_euler")
             s.integrator = Integrator::ExplicitEuler;

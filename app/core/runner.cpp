@@ -99,6 +99,13 @@ std::vector<Segment> segmentsOf(const Session& session) {
 
 } // namespace
 
+std::vector<Session> segmentSessions(const Session& session) {
+    std::vector<Session> sessions;
+    for (const Segment& segment : segmentsOf(session))
+        sessions.push_back(segment.session);
+    return sessions;
+}
+
 RunResult runSession(const Session& session, const SimulatorFactory& makeSimulator,
                      const RunOptions& options) {
     const std::vector<Segment> segments = segmentsOf(session);

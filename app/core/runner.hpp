@@ -34,6 +34,10 @@ using SimulatorFactory = std::function<std::unique_ptr<Simulator>(const Session&
 // model's sane range.
 RunResult runSimulation(Simulator& simulator, const Session& session, const RunOptions& options);
 
+// The session each stage or schedule level runs as (its model, params, dt,
+// size, steps and grid spacing), in order.
+std::vector<Session> segmentSessions(const Session& session);
+
 // Runs a whole session from its initial condition: one level, or its
 // coarse-to-fine schedule, each level starting from the previous one's state
 // resampled bilinearly, with diffusion scaled to the level's cell size so the

@@ -330,6 +330,17 @@ void applySchedule(Session& session, std::vector<ScheduleLevel> levels) {
         session.steps += l.steps;
 }
 
+void applySteps(Session& session, int steps, const std::string& flag) {
+    if (!session.stages.empty())
+        throw InputError(flag + " does not apply to a session with cascade \"stages\" (" +
+                         std::to_string(session.stages.size()) +
+                         " stages of their own steps): edit the stages' \"steps\"");
+    if (!session.schedule.empty())
+        throw InputError(flag + " does not apply to a session with a coarse-to-fine "
+                                "\"schedule\": edit its levels or use --schedule");
+    session.steps = steps;
+}
+
 void validateSession(const Session& s, const std::string& source) {
     const ReactionModel* model = findModel(s.model);
     if (!model)

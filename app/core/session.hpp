@@ -102,6 +102,11 @@ void applyParamOverride(Session& session, const std::string& assignment);
 // steps the levels' total.
 void applySchedule(Session& session, std::vector<ScheduleLevel> levels);
 
+// Sets the number of steps of a one-level session; a session with cascade
+// stages or a schedule counts its steps per stage or level, so `flag` (e.g.
+// "--steps") is refused with an InputError saying so.
+void applySteps(Session& session, int steps, const std::string& flag);
+
 // Checks params against the model's ranges and the grid against limits.
 void validateSession(const Session& session, const std::string& source);
 
