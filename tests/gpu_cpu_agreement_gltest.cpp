@@ -1,6 +1,7 @@
 // The GLSL backend against the CPU reference: same step semantics, for every
 // model, both edge modes and both stencils.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -87,6 +88,20 @@ TEST(GpuCpuAgreement, EveryDiffusionOperatorAndIntegrator) {
     mapped.diffusion.map->orientation.type = OrientationField::Type::Spiral;
     mapped.diffusion.map->orientation.angle = 30.0f;
     cases.push_back({"diffusion map", mapped, 1e-3f});
+    // Two state textures (MRT): the map and the 5x5 kernels indexed per texture.
+    Session mappedMrt = mapped;
+    mappedMrt.model = "witkin_kass_md3";
+    mappedMrt.params.clear();
+    for (const ParamSpec& p : mappedMrt.reactionModel().params())
+        mappedMrt.params[p.name] = p.defaultValue;
+    mappedMrt.init = mappedMrt.reactionModel().defaultInit();
+    mappedMrt.diffusion.anisotropic = mappedMrt.reactionModel().defaultDiffusion().anisotropic;
+    cases.push_back({"diffusion map, 6 chemicals", mappedMrt, 1e-3f});
+    Session generalizedMrt = test::smallSession("meinhardt_random_stripes", 40, 50);
+    generalizedMrt.diffusion.type = DiffusionType::Generalized;
+    generalizedMrt.diffusion.generalized = {{"g1", "c"}, {"g2", "c"}, {"s1", "a"}, {"s2", "a"}};
+    generalizedMrt.init.noise = {{"g1", 0.3f}, {"g2", 0.3f}}; // off the steady state, so it moves
+    cases.push_back({"generalized, 6 chemicals", generalizedMrt, 1e-4f});
     for (const char* set : {"c", "d"}) {
         Session g = test::smallSession("gs_coral", 40, 50);
         g.diffusion.type = DiffusionType::Generalized;
@@ -98,7 +113,9 @@ TEST(GpuCpuAgreement, EveryDiffusionOperatorAndIntegrator) {
     semi.integrator = Integrator::SemiImplicit;
     semi.dt = 3.0f;
     cases.push_back({"semi-implicit 5-point", semi, 1e-4f});
-    Session semiGeneralized = cases[3].session;
+    Session semiGeneralized = std::find_if(cases.begin(), cases.end(), [](const OperatorCase& c) {
+                                  return std::string(c.what) == "generalized (d)";
+                              })->session;
     semiGeneralized.integrator = Integrator::SemiImplicit;
     semiGeneralized.dt = 1.0f;
     semiGeneralized.steps = 20;
