@@ -128,3 +128,26 @@ TEST(Colormap, PalettesRunFromDarkToLight) {
             EXPECT_GT(luma(x), luma(x - 1) - 1e-3f) << name << " at " << x;
     }
 }
+
+TEST(Colormap, LevelsWindowTheNormalisedValue) {
+    // A ramp 0..1 over 11 columns: with levels [0.3, 0.5] everything at or
+    // below 0.3 is the low colour, at or above 0.5 the high colour, and 0.4
+    // is half way.
+    State st(11, 1, 1);
+    for (int x = 0; x < 11; ++x)
+        st.at(0, x, 0) = float(x) / 10.0f;
+    ColorMapSpec spec;
+    spec.name = "grey";
+    spec.levels = {0.3f, 0.5f};
+    const auto rgb = applyColormap(st, 0, spec);
+    for (int x = 0; x <= 3; ++x)
+        EXPECT_EQ(rgb[std::size_t(x) * 3], 0.0f) << x;
+    EXPECT_NEAR(rgb[4 * 3], 0.5f, 1e-5f);
+    for (int x = 5; x <= 10; ++x)
+        EXPECT_EQ(rgb[std::size_t(x) * 3], 1.0f) << x;
+    // The default window changes nothing.
+    spec.levels = ColorMapSpec{}.levels;
+    const auto plain = applyColormap(st, 0, spec);
+    for (int x = 0; x < 11; ++x)
+        EXPECT_FLOAT_EQ(plain[std::size_t(x) * 3], float(x) / 10.0f);
+}

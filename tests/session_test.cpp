@@ -66,6 +66,10 @@ TEST(Session, JsonRoundTripKeepsEverything) {
         EXPECT_EQ(back.init.base, s.init.base);
         EXPECT_EQ(back.init.type, s.init.type);
     }
+    Session windowed = loadPreset("gs_coral");
+    windowed.colormap.levels = {0.25f, 0.75f};
+    EXPECT_EQ(sessionFromJson(sessionToJson(windowed), "roundtrip").colormap.levels,
+              windowed.colormap.levels);
 }
 
 TEST(Session, BrokenFieldsAreNamed) {
@@ -95,6 +99,9 @@ TEST(Session, BrokenFieldsAreNamed) {
         {R"({"model": "gray_scott", "init": {"base": {"w": 1}}})",
          "'init.base.w' is not a chemical"},
         {R"({"model": "gray_scott", "colormap": {"low": [1, 2]}})", "array of 3 numbers"},
+        {R"({"model": "gray_scott", "colormap": {"levels": [0.5, 0.2]}})",
+         "'colormap.levels' must be an array [low, high] with 0 <= low < high <= 1"},
+        {R"({"model": "gray_scott", "colormap": {"levels": [0, 2]}})", "colormap.levels[1]"},
         {R"({"model": "gray_scott", "colour": 1})", "unknown field 'colour'"},
         {R"([1, 2])", "must be a JSON object"},
     };

@@ -1,6 +1,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
@@ -48,6 +49,7 @@ struct RenderFlags {
     std::string context;
     std::string colormap;
     std::string chemical;
+    std::string levels;
     int bitDepth = 8;
 };
 
@@ -159,6 +161,19 @@ Session buildSession(const RenderFlags& f) {
         s.colormap.name = f.colormap;
     if (!f.chemical.empty())
         s.colormap.chemical = f.chemical;
+    if (!f.levels.empty()) {
+        const std::size_t colon = f.levels.find(':');
+        char* end0 = nullptr;
+        char* end1 = nullptr;
+        const std::string a = f.levels.substr(0, colon);
+        const std::string b = colon == std::string::npos ? "" : f.levels.substr(colon + 1);
+        const float low = std::strtof(a.c_str(), &end0), high = std::strtof(b.c_str(), &end1);
+        if (colon == std::string::npos || a.empty() || b.empty() || *end0 || *end1 ||
+            !(low >= 0.0f && low < high && high <= 1.0f))
+            throw InputError("--levels '" + f.levels +
+                             "' is not LOW:HIGH with 0 <= LOW < HIGH <= 1 (e.g. 0.3:0.5)");
+        s.colormap.levels = {low, high};
+    }
     checkColormapName(s.colormap.name);
     colormapChemical(s.colormap, s.outputModel());
     validateSession(s, f.sessionFile.empty() ? "preset " + s.name : f.sessionFile);
@@ -252,6 +267,8 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--colormap", flags->colormap,
                     "grey, two-colour, viridis, magma, inferno, coolwarm");
     cmd->add_option("--chemical", flags->chemical, "chemical to show (default: the model's)");
+    cmd->add_option("--levels", flags->levels,
+                    "LOW:HIGH window on the min-max normalised value (default 0:1)");
     cmd->add_option("--bit-depth", flags->bitDepth, "8 or 16 bits per channel for PNG/TIFF");
     cmd->callback([flags] { render(*flags); });
 }

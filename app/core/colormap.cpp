@@ -94,10 +94,12 @@ std::vector<float> applyColormap(const State& state, int chemical, const ColorMa
     const float range = hi - lo;
     const float magnitude = std::max({1.0f, std::fabs(lo), std::fabs(hi)});
     const float scale = range > 1e-5f * magnitude ? 1.0f / range : 0.0f;
+    const float levelLow = spec.levels[0], levelScale = 1.0f / (spec.levels[1] - spec.levels[0]);
 
     std::vector<float> rgb(n * 3);
     for (std::size_t i = 0; i < n; ++i) {
-        const float t = std::isfinite(p[i]) ? (p[i] - lo) * scale : 0.0f;
+        const float normalised = std::isfinite(p[i]) ? (p[i] - lo) * scale : 0.0f;
+        const float t = std::clamp((normalised - levelLow) * levelScale, 0.0f, 1.0f);
         Rgb c;
         if (spec.name == "grey")
             c = {t, t, t};

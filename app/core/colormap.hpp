@@ -18,7 +18,8 @@ void checkColormapName(const std::string& name);
 int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model);
 
 // One chemical, normalised by its own min and max over the grid (de Kleine's
-// min-max mapping), through the named map: interleaved RGB in [0, 1].
+// min-max mapping), windowed by spec.levels, through the named map:
+// interleaved RGB in [0, 1].
 std::vector<float> applyColormap(const State& state, int chemical, const ColorMapSpec& spec);
 
 } // namespace morphogen

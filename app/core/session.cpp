@@ -182,7 +182,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
 
     if (const json* cm = top.find("colormap")) {
         FieldReader reader(*cm, source, "colormap");
-        reader.rejectUnknown({"name", "chemical", "low", "high"});
+        reader.rejectUnknown({"name", "chemical", "low", "high", "levels"});
         s.colormap.name = reader.string("name", s.colormap.name);
         s.colormap.chemical = reader.string("chemical", "");
         // The colours show the final state: the last stage's model's chemicals.
@@ -193,6 +193,17 @@ Session sessionFromJson(const json& root, const std::string& source) {
                                              (&shown != model ? " (the last stage's model)" : ""));
         s.colormap.low = colour(reader, "low", s.colormap.low);
         s.colormap.high = colour(reader, "high", s.colormap.high);
+        if (const json* levels = reader.find("levels")) {
+            if (!levels->is_array() || levels->size() != 2)
+                reader.failField("levels",
+                                 "must be an array [low, high] with 0 <= low < high <= 1");
+            for (std::size_t i = 0; i < 2; ++i)
+                s.colormap.levels[i] = float(
+                    reader.numberValue((*levels)[i], "levels[" + std::to_string(i) + "]", 0, 1));
+            if (!(s.colormap.levels[0] < s.colormap.levels[1]))
+                reader.failField("levels",
+                                 "must be an array [low, high] with 0 <= low < high <= 1");
+        }
     }
     return s;
 }
@@ -230,6 +241,8 @@ json sessionToJson(const Session& s) {
         cm["chemical"] = s.colormap.chemical;
     cm["low"] = s.colormap.low;
     cm["high"] = s.colormap.high;
+    if (s.colormap.levels != ColorMapSpec{}.levels)
+        cm["levels"] = s.colormap.levels;
     j["colormap"] = cm;
     return j;
 }
