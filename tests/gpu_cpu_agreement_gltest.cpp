@@ -184,10 +184,7 @@ TEST(GpuCpuAgreement, EveryModelOnEveryPassVariant) {
             gpu.run(30);
             const State a = cpu.state(), b = gpu.state();
             // Relative to the largest value: models range from ~1 to ~30.
-            float scale = 1.0f;
-            for (int c = 0; c < a.channels(); ++c)
-                for (std::size_t i = 0; i < a.cellCount(); ++i)
-                    scale = std::max(scale, std::fabs(a.plane(c)[i]));
+            const float scale = std::max(1.0f, test::maxAbsValue(a));
             const float tolerance = 1e-4f * scale;
             std::printf("%s %s (%d chemicals): moved %.3g, gpu-cpu %.3g\n", model->name().c_str(),
                         variant, a.channels(), test::maxAbsDifference(a, start),
@@ -227,10 +224,7 @@ TEST(GpuPresets, EveryPresetRunsOnBothBackendsAndTheyAgree) {
         // runSession throws if a value leaves the model's sane range.
         const State a = runSession(s, cpu, {}).state, b = runSession(s, gpu, {}).state;
         ASSERT_EQ(a.channels(), b.channels());
-        float scale = 1.0f;
-        for (int c = 0; c < a.channels(); ++c)
-            for (std::size_t i = 0; i < a.cellCount(); ++i)
-                scale = std::max(scale, std::fabs(a.plane(c)[i]));
+        const float scale = std::max(1.0f, test::maxAbsValue(a));
         // See Case::tolerance; relative, as values range from ~1 to ~30.
         EXPECT_LT(test::maxAbsDifference(a, b), 1e-3f * scale);
     }

@@ -33,6 +33,14 @@ Session shrunk(Session s, int size, int stepsPerSegment) {
     return s;
 }
 
+float maxAbsValue(const State& s) {
+    float worst = 0.0f;
+    for (int c = 0; c < s.channels(); ++c)
+        for (std::size_t i = 0; i < s.cellCount(); ++i)
+            worst = std::max(worst, std::fabs(s.plane(c)[i]));
+    return worst;
+}
+
 float maxAbsDifference(const State& a, const State& b) {
     float worst = 0.0f;
     for (int c = 0; c < a.channels(); ++c)

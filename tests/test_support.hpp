@@ -16,6 +16,10 @@ Session smallSession(const std::string& preset, int size, int steps);
 // its levels, halving the size per level below the last).
 Session shrunk(Session session, int size, int stepsPerSegment);
 
+// Largest absolute value over all chemicals (for tolerances relative to a
+// model's range).
+float maxAbsValue(const State& s);
+
 // Largest absolute difference over all chemicals.
 float maxAbsDifference(const State& a, const State& b);
 

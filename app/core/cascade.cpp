@@ -47,8 +47,6 @@ const ReactionModel& stageModel(const std::vector<Stage>& stages, std::size_t in
     return sessionModel;
 }
 
-namespace {} // namespace
-
 std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
                                   const ReactionModel& sessionModel) {
     if (!j.is_array() || j.empty())
