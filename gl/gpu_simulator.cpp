@@ -272,13 +272,13 @@ void GpuSimulator::run(int steps) {
         return;
     }
     for (int i = 0; i < steps; ++i) {
-        // rhs = c + dt f(c), then Jacobi sweeps from x0 = c.
+        // rhs = c + dt f(c), then relaxation passes from x0 = c.
         m_rhsProgram.use();
         m_pingPong.vertexArray().bind();
         m_rhsFramebuffer.bind();
         m_pingPong.bindCurrent();
         glDrawArrays(GL_TRIANGLES, 0, 3);
-        m_pingPong.run(m_program, m_k.jacobiSweeps);
+        m_pingPong.run(m_program, m_k.relaxationPasses);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

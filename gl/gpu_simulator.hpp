@@ -2,7 +2,7 @@
 
 #include <array>
 
-#include "core/simulator.hpp"
+#include "core/sim/simulator.hpp"
 #include "gl/objects.hpp"
 
 namespace morphogen::gl {

@@ -7,8 +7,8 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "core/embedded_files.hpp"
-#include "core/errors.hpp"
+#include "core/base/embedded_files.hpp"
+#include "core/base/errors.hpp"
 
 namespace morphogen::gl {
 

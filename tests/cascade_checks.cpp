@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/cascade.hpp"
-#include "core/param_map.hpp"
+#include "core/session/cascade.hpp"
+#include "core/session/param_map.hpp"
 #include "test_support.hpp"
 
 namespace morphogen::test {

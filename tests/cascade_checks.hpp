@@ -2,7 +2,7 @@
 // Checks shared by cascade_test (CPU) and cascade_gltest (GPU): the same
 // semantics must hold on both backends.
 
-#include "core/runner.hpp"
+#include "core/sim/runner.hpp"
 
 namespace morphogen::test {
 

@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/cpu_simulator.hpp"
-#include "core/errors.hpp"
-#include "core/runner.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "core/base/errors.hpp"
+#include "core/sim/runner.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

@@ -6,11 +6,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/cpu_simulator.hpp"
-#include "core/diffusion_operator.hpp"
-#include "core/pattern_stats.hpp"
-#include "core/runner.hpp"
-#include "core/stability.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "core/operators/diffusion_operator.hpp"
+#include "core/analysis/pattern_stats.hpp"
+#include "core/sim/runner.hpp"
+#include "core/operators/stability.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;
@@ -117,7 +117,7 @@ TEST(SemiImplicit, JacobiResidualShrinksWithSweeps) {
     s.dt = 3.0f; // ~2.5x the explicit limit
     double previous = 1e30;
     for (int sweeps : {2, 8, 32}) {
-        s.jacobiSweeps = sweeps;
+        s.relaxationPasses = sweeps;
         CpuSimulator sim(s);
         sim.setState(makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, 1));
         sim.run(s.steps);

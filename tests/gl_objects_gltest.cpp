@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/errors.hpp"
+#include "core/base/errors.hpp"
 #include "gl/gl_checks.hpp"
 #include "gl/objects.hpp"
 #include "gl_test_support.hpp"

@@ -6,9 +6,9 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
-#include "core/colormap.hpp"
-#include "core/errors.hpp"
-#include "core/image_io.hpp"
+#include "core/output/colormap.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

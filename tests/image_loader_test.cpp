@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/errors.hpp"
-#include "core/image_io.hpp"
-#include "core/orientation_field.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/operators/orientation_field.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

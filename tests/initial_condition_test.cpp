@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "core/initial_condition.hpp"
-#include "core/session.hpp"
+#include "core/models/initial_condition.hpp"
+#include "core/session/session.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

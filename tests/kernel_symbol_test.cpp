@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/kernel_symbol.hpp"
-#include "core/tensor_sequence.hpp"
+#include "core/numerics/kernel_symbol.hpp"
+#include "core/numerics/tensor_sequence.hpp"
 
 using namespace morphogen;
 

@@ -13,7 +13,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/pattern_stats.hpp"
+#include "core/analysis/pattern_stats.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/pattern_classifier.hpp"
+#include "core/analysis/pattern_classifier.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

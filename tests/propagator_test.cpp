@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/errors.hpp"
-#include "core/propagator.hpp"
+#include "core/base/errors.hpp"
+#include "core/numerics/propagator.hpp"
 
 using namespace morphogen;
 

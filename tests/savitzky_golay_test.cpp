@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/errors.hpp"
-#include "core/savitzky_golay.hpp"
+#include "core/base/errors.hpp"
+#include "core/numerics/savitzky_golay.hpp"
 
 using namespace morphogen;
 

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/errors.hpp"
-#include "core/session.hpp"
+#include "core/base/errors.hpp"
+#include "core/session/session.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/stability.hpp"
+#include "core/operators/stability.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/state.hpp"
+#include "core/base/state.hpp"
 
 using namespace morphogen;
 

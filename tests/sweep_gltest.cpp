@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/cpu_simulator.hpp"
-#include "core/sweep.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "core/sim/sweep.hpp"
 #include "gl/gpu_simulator.hpp"
 #include "gl_test_support.hpp"
 

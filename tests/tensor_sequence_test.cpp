@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/errors.hpp"
-#include "core/tensor_sequence.hpp"
+#include "core/base/errors.hpp"
+#include "core/numerics/tensor_sequence.hpp"
 
 using namespace morphogen;
 

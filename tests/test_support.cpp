@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/cpu_simulator.hpp"
+#include "core/sim/cpu_simulator.hpp"
 
 namespace morphogen::test {
 

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/models/witkin_kass.hpp"
-#include "core/session.hpp"
+#include "core/session/session.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

@@ -1,7 +1,7 @@
 #include "cli/backend.hpp"
 
-#include "core/cpu_simulator.hpp"
-#include "core/errors.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "core/base/errors.hpp"
 #include "gl/gpu_simulator.hpp"
 
 namespace morphogen::cli {

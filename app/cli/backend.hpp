@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "core/runner.hpp"
+#include "core/sim/runner.hpp"
 #include "gl/context.hpp"
 
 namespace morphogen::cli {

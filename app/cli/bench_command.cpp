@@ -11,12 +11,12 @@
 
 #include "cli/backend.hpp"
 #include "cli/commands.hpp"
-#include "core/cpu_simulator.hpp"
-#include "core/errors.hpp"
-#include "core/initial_condition.hpp"
-#include "core/pattern_stats.hpp"
-#include "core/resample.hpp"
-#include "core/session.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "core/base/errors.hpp"
+#include "core/models/initial_condition.hpp"
+#include "core/analysis/pattern_stats.hpp"
+#include "core/numerics/resample.hpp"
+#include "core/session/session.hpp"
 #include "gl/gpu_simulator.hpp"
 
 namespace morphogen::cli {

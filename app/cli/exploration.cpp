@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "core/errors.hpp"
+#include "core/base/errors.hpp"
 
 namespace morphogen::cli {
 

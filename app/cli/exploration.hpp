@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "core/session.hpp"
-#include "core/sweep.hpp"
+#include "core/session/session.hpp"
+#include "core/sim/sweep.hpp"
 
 namespace morphogen::cli {
 

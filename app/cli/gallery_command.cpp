@@ -14,10 +14,10 @@
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
-#include "core/errors.hpp"
-#include "core/image_io.hpp"
-#include "core/runner.hpp"
-#include "core/session.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/sim/runner.hpp"
+#include "core/session/session.hpp"
 
 namespace morphogen::cli {
 

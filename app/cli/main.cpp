@@ -4,7 +4,7 @@
 #include <exception>
 
 #include "cli/commands.hpp"
-#include "core/errors.hpp"
+#include "core/base/errors.hpp"
 
 int main(int argc, char** argv) {
     CLI::App app{"Morphogen: reaction-diffusion textures (Turing, Gray-Scott) on the GPU or CPU",

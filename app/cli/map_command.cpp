@@ -13,11 +13,11 @@
 #include "cli/plot_text.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
-#include "core/colormap.hpp"
-#include "core/errors.hpp"
-#include "core/image_io.hpp"
-#include "core/runner.hpp"
-#include "core/session.hpp"
+#include "core/output/colormap.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/sim/runner.hpp"
+#include "core/session/session.hpp"
 
 namespace morphogen::cli {
 

@@ -1,7 +1,7 @@
 #include <cstdio>
 
 #include "cli/commands.hpp"
-#include "core/session.hpp"
+#include "core/session/session.hpp"
 
 namespace morphogen::cli {
 

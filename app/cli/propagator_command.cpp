@@ -9,11 +9,11 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
-#include "core/errors.hpp"
-#include "core/image_io.hpp"
-#include "core/kernel_symbol.hpp"
-#include "core/propagator.hpp"
-#include "core/tensor_sequence.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/numerics/kernel_symbol.hpp"
+#include "core/numerics/propagator.hpp"
+#include "core/numerics/tensor_sequence.hpp"
 
 namespace morphogen::cli {
 

@@ -9,12 +9,12 @@
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
-#include "core/colormap.hpp"
-#include "core/errors.hpp"
-#include "core/image_io.hpp"
-#include "core/initial_condition.hpp"
-#include "core/runner.hpp"
-#include "core/session.hpp"
+#include "core/output/colormap.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/models/initial_condition.hpp"
+#include "core/sim/runner.hpp"
+#include "core/session/session.hpp"
 
 namespace morphogen::cli {
 
@@ -43,7 +43,7 @@ struct RenderFlags {
     std::string edges;
     std::string stencil;
     std::string integrator;
-    int sweeps = -1;
+    int relaxationPasses = -1;
     std::string schedule;
     std::string backend = "auto";
     std::string context;
@@ -124,10 +124,11 @@ Session buildSession(const RenderFlags& f) {
             throw InputError("--integrator '" + f.integrator +
                              "' is unknown (accepted: explicit_euler, semi_implicit)");
     }
-    if (f.sweeps != -1) {
-        if (f.sweeps < 1 || f.sweeps > 1000)
-            throw InputError("--sweeps " + std::to_string(f.sweeps) + ": accepted are 1..1000");
-        s.jacobiSweeps = f.sweeps;
+    if (f.relaxationPasses != -1) {
+        if (f.relaxationPasses < 1 || f.relaxationPasses > 1000)
+            throw InputError("--relaxation-passes " + std::to_string(f.relaxationPasses) +
+                             ": accepted are 1..1000");
+        s.relaxationPasses = f.relaxationPasses;
     }
     if (f.seed >= 0)
         s.seed = std::uint64_t(f.seed);
@@ -257,7 +258,8 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--edges", flags->edges, "periodic (seamless) or clamped");
     cmd->add_option("--stencil", flags->stencil, "Laplacian: 5-point or 9-point");
     cmd->add_option("--integrator", flags->integrator, "explicit_euler or semi_implicit");
-    cmd->add_option("--sweeps", flags->sweeps, "relaxation sweeps per semi-implicit step");
+    cmd->add_option("--relaxation-passes,--sweeps", flags->relaxationPasses,
+                    "relaxation passes per semi-implicit step (--sweeps: the old name)");
     cmd->add_option("--schedule", flags->schedule,
                     "coarse-to-fine levels size:steps, coarsest first (e.g. 128:4000,256:2000)");
     cmd->add_option("--backend", flags->backend, "auto, gpu or cpu (default auto)");

@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <sstream>
 
-#include "core/colormap.hpp"
-#include "core/errors.hpp"
-#include "core/image_io.hpp"
-#include "core/runner.hpp"
-#include "core/stability.hpp"
+#include "core/output/colormap.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/sim/runner.hpp"
+#include "core/operators/stability.hpp"
 
 namespace morphogen::cli {
 
@@ -58,9 +58,9 @@ void checkStability(Session& session, bool verbose) {
             return;
         const StepConstants k = StepConstants::fromSession(session);
         std::fprintf(stderr,
-                     "morphogen: semi-implicit step: %d relaxation sweeps, residual factor %.3g "
+                     "morphogen: semi-implicit step: %d relaxation passes, residual factor %.3g "
                      "per sweep (%.2g per step) from the operator's symbol\n",
-                     k.jacobiSweeps, k.contraction, std::pow(k.contraction, k.jacobiSweeps));
+                     k.relaxationPasses, k.contraction, std::pow(k.contraction, k.relaxationPasses));
         return;
     }
     // A schedule's coarse levels are more stable than the finest (the session

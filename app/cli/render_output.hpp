@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "core/runner.hpp"
-#include "core/session.hpp"
+#include "core/sim/runner.hpp"
+#include "core/session/session.hpp"
 
 namespace morphogen::cli {
 

@@ -20,11 +20,11 @@
 #include "cli/plot_text.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
-#include "core/colormap.hpp"
-#include "core/errors.hpp"
-#include "core/image_io.hpp"
-#include "core/pattern_classifier.hpp"
-#include "core/sweep.hpp"
+#include "core/output/colormap.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/analysis/pattern_classifier.hpp"
+#include "core/sim/sweep.hpp"
 
 namespace morphogen::cli {
 

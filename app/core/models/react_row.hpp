@@ -1,6 +1,6 @@
 #pragma once
 
-#include "core/reaction_model.hpp"
+#include "core/models/reaction_model.hpp"
 
 namespace morphogen {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/reaction_model.hpp"
+#include "core/models/reaction_model.hpp"
 
 namespace morphogen {
 

@@ -1,0 +1,110 @@
+#pragma once
+// Strict reading of JSON objects for sessions and presets: every problem
+// becomes an InputError naming the source, the field path and what is accepted.
+
+#include <cmath>
+#include <initializer_list>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/base/errors.hpp"
+
+namespace morphogen {
+
+inline std::string typeName(const nlohmann::json& j) {
+    return j.type_name();
+}
+
+// Reads fields of one JSON object and reports problems as "source: field 'a.b' ...".
+class FieldReader {
+public:
+    FieldReader(const nlohmann::json& object, std::string source, std::string prefix)
+        : m_object(object), m_source(std::move(source)), m_prefix(std::move(prefix)) {
+        if (!m_object.is_object())
+            fail(m_prefix.empty() ? "the top level" : "field '" + m_prefix + "'",
+                 "must be a JSON object, got " + typeName(m_object));
+    }
+
+    [[noreturn]] void fail(const std::string& what, const std::string& problem) const {
+        throw InputError(m_source + ": " + what + " " + problem);
+    }
+    std::string path(const std::string& key) const {
+        return m_prefix.empty() ? key : m_prefix + "." + key;
+    }
+    [[noreturn]] void failField(const std::string& key, const std::string& problem) const {
+        fail("field '" + path(key) + "'", problem);
+    }
+
+    const nlohmann::json* find(const std::string& key) const {
+        auto it = m_object.find(key);
+        return it == m_object.end() ? nullptr : &*it;
+    }
+
+    void rejectUnknown(std::initializer_list<const char*> known) const {
+        for (auto it = m_object.begin(); it != m_object.end(); ++it) {
+            bool ok = false;
+            std::string list;
+            for (const char* k : known) {
+                ok = ok || it.key() == k;
+                list += (list.empty() ? "" : ", ") + std::string(k);
+            }
+            if (!ok)
+                fail("unknown field '" + path(it.key()) + "'", "(accepted: " + list + ")");
+        }
+    }
+
+    std::string string(const std::string& key, const std::string& fallback) const {
+        const nlohmann::json* j = find(key);
+        if (!j)
+            return fallback;
+        if (!j->is_string())
+            failField(key, "must be a string, got " + typeName(*j));
+        return j->get<std::string>();
+    }
+
+    double number(const std::string& key, double fallback, double min, double max) const {
+        const nlohmann::json* j = find(key);
+        if (!j)
+            return fallback;
+        return numberValue(*j, key, min, max);
+    }
+
+    double numberValue(const nlohmann::json& j, const std::string& key, double min,
+                       double max) const {
+        if (!j.is_number())
+            failField(key, "must be a number, got " + typeName(j));
+        const double v = j.get<double>();
+        if (!std::isfinite(v) || v < min || v > max) {
+            std::ostringstream os;
+            os << "is " << v << ", accepted range is [" << min << ", " << max << "]";
+            failField(key, os.str());
+        }
+        return v;
+    }
+
+    long long integer(const std::string& key, long long fallback, long long min,
+                      long long max) const {
+        const nlohmann::json* j = find(key);
+        if (!j)
+            return fallback;
+        if (!j->is_number_integer())
+            failField(key, "must be an integer, got " + typeName(*j));
+        const long long v =
+            j->is_number_unsigned() ? (long long)j->get<unsigned long long>() : j->get<long long>();
+        if (v < min || v > max)
+            failField(key, "is " + std::to_string(v) + ", accepted range is [" +
+                               std::to_string(min) + ", " + std::to_string(max) + "]");
+        return v;
+    }
+
+    const std::string& source() const { return m_source; }
+
+private:
+    const nlohmann::json& m_object;
+    std::string m_source;
+    std::string m_prefix;
+};
+
+} // namespace morphogen

@@ -1,0 +1,165 @@
+#include "core/io/image_io.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <OpenImageIO/imageio.h>
+
+#include "core/base/errors.hpp"
+
+namespace morphogen {
+
+namespace fs = std::filesystem;
+
+ImageFormat imageFormatForPath(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (ext == ".png")
+        return ImageFormat::Png;
+    if (ext == ".tif" || ext == ".tiff")
+        return ImageFormat::Tiff;
+    if (ext == ".exr")
+        return ImageFormat::Exr;
+    throw InputError(path + ": unsupported image extension '" + ext +
+                     "' (accepted: .png, .tif, .tiff, .exr)");
+}
+
+void checkWritable(const std::string& path) {
+    const fs::path p(path);
+    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        throw InputError(path + ": cannot write here: folder '" + dir.string() +
+                         "' does not exist");
+    if (fs::is_directory(p, ec))
+        throw InputError(path + ": cannot write here: it is a folder");
+    const std::string probe = path + ".probe";
+    {
+        std::ofstream out(probe);
+        if (!out)
+            throw InputError(path + ": cannot write here: folder '" + dir.string() +
+                             "' is not writable");
+    }
+    fs::remove(probe, ec);
+}
+
+namespace {
+
+void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
+    // Keep the real extension on the temporary name: OIIO picks the format by it.
+    const fs::path p(path);
+    const std::string tmp =
+        (p.parent_path() / (".~" + p.stem().string() + p.extension().string())).string();
+    auto out = OIIO::ImageOutput::create(tmp);
+    if (!out)
+        throw InputError(path + ": no image writer for this format: " + OIIO::geterror());
+    if (!out->open(tmp, spec) || !out->write_image(spec.format, pixels) || !out->close()) {
+        const std::string why = out->geterror();
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw InputError(path + ": writing the image failed: " + why);
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw InputError(path + ": cannot move the image into place: " + ec.message());
+    }
+}
+
+} // namespace
+
+void writeRgbImage(const std::string& path, const std::vector<float>& rgb, int width, int height,
+                   int bitDepth) {
+    const ImageFormat format = imageFormatForPath(path);
+    if (format == ImageFormat::Exr) {
+        OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::FLOAT);
+        writeAtomically(path, spec, rgb.data());
+        return;
+    }
+    if (bitDepth != 8 && bitDepth != 16)
+        throw InputError("bit depth " + std::to_string(bitDepth) +
+                         " is not supported (accepted: 8, 16)");
+    if (bitDepth == 8) {
+        std::vector<unsigned char> px(rgb.size());
+        for (std::size_t i = 0; i < rgb.size(); ++i)
+            px[i] = (unsigned char)std::lround(std::clamp(rgb[i], 0.0f, 1.0f) * 255.0f);
+        writeAtomically(path, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8), px.data());
+    } else {
+        std::vector<unsigned short> px(rgb.size());
+        for (std::size_t i = 0; i < rgb.size(); ++i)
+            px[i] = (unsigned short)std::lround(std::clamp(rgb[i], 0.0f, 1.0f) * 65535.0f);
+        writeAtomically(path, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT16), px.data());
+    }
+}
+
+void writeRawImage(const std::string& path, const State& state,
+                   const std::vector<std::string>& channelNames) {
+    const ImageFormat format = imageFormatForPath(path);
+    if (format == ImageFormat::Png)
+        throw InputError(path + ": PNG cannot hold raw float concentrations (use .exr or .tif)");
+    const int nc = state.channels();
+    OIIO::ImageSpec spec(state.width(), state.height(), nc, OIIO::TypeDesc::FLOAT);
+    spec.channelnames.assign(channelNames.begin(), channelNames.end());
+    std::vector<float> px(state.cellCount() * std::size_t(nc));
+    for (int c = 0; c < nc; ++c) {
+        const float* p = state.plane(c);
+        for (std::size_t i = 0; i < state.cellCount(); ++i)
+            px[i * std::size_t(nc) + std::size_t(c)] = p[i];
+    }
+    writeAtomically(path, spec, px.data());
+}
+
+} // namespace morphogen
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+namespace morphogen {
+
+std::vector<float> loadLuminance(const std::string& path, int width, int height) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError(path + ": image not found");
+    // ImageInput rather than ImageBuf(path): the latter goes through OIIO's
+    // process-wide image cache, which keeps stale entries for a file that was
+    // rewritten and crashed after reading a truncated PNG.
+    auto input = OIIO::ImageInput::open(path);
+    if (!input)
+        throw InputError(path + ": cannot read the image (" + OIIO::geterror() +
+                         "); accepted: any format OpenImageIO reads, e.g. PNG, TIFF, EXR, JPEG");
+    const OIIO::ImageSpec spec = input->spec();
+    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
+        throw InputError(path + ": the image is empty");
+    std::vector<float> original(std::size_t(spec.width) * spec.height *
+                                std::size_t(spec.nchannels));
+    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, original.data()))
+        throw InputError(path + ": cannot read the image's pixels (" + input->geterror() +
+                         "); is the file truncated?");
+    input->close();
+    OIIO::ImageSpec floatSpec(spec.width, spec.height, spec.nchannels, OIIO::TypeDesc::FLOAT);
+    const OIIO::ImageBuf source(floatSpec, original.data());
+    OIIO::ImageBuf resized;
+    const OIIO::ROI roi(0, width, 0, height, 0, 1, 0, spec.nchannels);
+    if (!OIIO::ImageBufAlgo::resize(resized, source, "", 0.0f, roi))
+        throw InputError(path + ": cannot resample the image to " + std::to_string(width) + "x" +
+                         std::to_string(height) + ": " + resized.geterror());
+    std::vector<float> pixels(std::size_t(width) * height * std::size_t(spec.nchannels));
+    resized.get_pixels(roi, OIIO::TypeDesc::FLOAT, pixels.data());
+    std::vector<float> luminance(std::size_t(width) * height);
+    const std::size_t nc = std::size_t(spec.nchannels);
+    for (std::size_t i = 0; i < luminance.size(); ++i) {
+        const float* p = &pixels[i * nc];
+        const float l = nc >= 3 ? 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2] : p[0];
+        if (!std::isfinite(l))
+            throw InputError(path + ": the image holds NaN or infinite values");
+        luminance[i] = l;
+    }
+    return luminance;
+}
+
+} // namespace morphogen

@@ -1,0 +1,40 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/base/state.hpp"
+
+namespace morphogen {
+
+enum class ImageFormat { Png, Tiff, Exr };
+
+// The format for an output path by its extension; throws InputError naming
+// the accepted extensions (.png, .tif, .tiff, .exr).
+ImageFormat imageFormatForPath(const std::string& path);
+
+// Fails early (before a long run) when the output cannot be created: the
+// folder is missing or not writable. Throws InputError naming the path.
+void checkWritable(const std::string& path);
+
+// Writes interleaved RGB in [0, 1] as 8- or 16-bit PNG/TIFF. Written to a
+// temporary file and renamed, so a failed write leaves no half-written image.
+void writeRgbImage(const std::string& path, const std::vector<float>& rgb, int width, int height,
+                   int bitDepth);
+
+// Writes the raw float concentrations, one channel per chemical with its name
+// (OpenEXR, or float TIFF).
+void writeRawImage(const std::string& path, const State& state,
+                   const std::vector<std::string>& channelNames);
+
+} // namespace morphogen
+
+namespace morphogen {
+
+// Loads an image's luminance (Rec. 709 weights over its first three
+// channels, or its only channel) resampled to width x height, row 0 at the
+// top, values as stored (0..1 for 8/16-bit files). Throws InputError naming
+// the file for a missing, unreadable or empty image.
+std::vector<float> loadLuminance(const std::string& path, int width, int height);
+
+} // namespace morphogen

@@ -1,0 +1,184 @@
+#include "core/models/initial_condition.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/base/json_fields.hpp"
+#include "core/base/random.hpp"
+#include "core/models/reaction_model.hpp"
+
+namespace morphogen {
+
+std::string toString(InitialCondition::Type type) {
+    switch (type) {
+    case InitialCondition::Type::Noise:
+        return "noise";
+    case InitialCondition::Type::CentreSquare:
+        return "centre_square";
+    case InitialCondition::Type::SeedSpots:
+        return "seed_spots";
+    case InitialCondition::Type::JitteredGrid:
+        return "jittered_grid";
+    }
+    return "noise";
+}
+
+namespace {
+float lookup(const std::map<std::string, float>& values, const std::string& key, float fallback) {
+    auto it = values.find(key);
+    return it == values.end() ? fallback : it->second;
+}
+} // namespace
+
+namespace {
+
+using nlohmann::json;
+
+std::map<std::string, float> chemicalValues(const FieldReader& parent, const std::string& key,
+                                            const ReactionModel& model) {
+    std::map<std::string, float> values;
+    const json* j = parent.find(key);
+    if (!j)
+        return values;
+    FieldReader reader(*j, parent.source(), parent.path(key));
+    for (auto it = j->begin(); it != j->end(); ++it) {
+        if (model.chemicalIndex(it.key()) < 0)
+            reader.fail("field '" + reader.path(it.key()) + "'",
+                        "is not a chemical of model '" + model.name() +
+                            "' (chemicals: " + model.chemicalNames() + ")");
+        values[it.key()] = float(reader.numberValue(*it, it.key(), -1e6, 1e6));
+    }
+    return values;
+}
+
+} // namespace
+
+InitialCondition initialConditionFromJson(const nlohmann::json& j, const std::string& source,
+                                          const std::string& path, const ReactionModel& model) {
+    InitialCondition init;
+    FieldReader reader(j, source, path);
+    reader.rejectUnknown(
+        {"type", "base", "noise", "inside", "fraction", "count", "radius", "spacing", "jitter"});
+    const std::string type = reader.string("type", toString(init.type));
+    if (type == "noise")
+        init.type = InitialCondition::Type::Noise;
+    else if (type == "centre_square")
+        init.type = InitialCondition::Type::CentreSquare;
+    else if (type == "seed_spots")
+        init.type = InitialCondition::Type::SeedSpots;
+    else if (type == "jittered_grid")
+        init.type = InitialCondition::Type::JitteredGrid;
+    else
+        reader.failField("type", "is '" + type +
+                                     "', accepted: noise, centre_square, seed_spots, "
+                                     "jittered_grid");
+    if (reader.find("base"))
+        init.base = chemicalValues(reader, "base", model);
+    if (reader.find("noise"))
+        init.noise = chemicalValues(reader, "noise", model);
+    if (reader.find("inside"))
+        init.inside = chemicalValues(reader, "inside", model);
+    init.squareFraction = float(reader.number("fraction", init.squareFraction, 0.0, 1.0));
+    init.spotCount = int(reader.integer("count", init.spotCount, 0, 100000));
+    init.spotRadius = float(reader.number("radius", init.spotRadius, 0.0, 10000.0));
+    init.spacing = float(reader.number("spacing", init.spacing, 2.0, 100000.0));
+    init.jitter = float(reader.number("jitter", init.jitter, 0.0, 1.0));
+    return init;
+}
+
+nlohmann::json initialConditionToJson(const InitialCondition& init) {
+    json j;
+    j["type"] = toString(init.type);
+    j["base"] = init.base;
+    j["noise"] = init.noise;
+    if (init.type != InitialCondition::Type::Noise)
+        j["inside"] = init.inside;
+    if (init.type == InitialCondition::Type::CentreSquare)
+        j["fraction"] = init.squareFraction;
+    if (init.type == InitialCondition::Type::SeedSpots) {
+        j["count"] = init.spotCount;
+        j["radius"] = init.spotRadius;
+    }
+    if (init.type == InitialCondition::Type::JitteredGrid) {
+        j["spacing"] = init.spacing;
+        j["jitter"] = init.jitter;
+        j["radius"] = init.spotRadius;
+    }
+    return j;
+}
+
+State makeInitialState(const InitialCondition& init, const ReactionModel& model,
+                       const std::map<std::string, float>& params, int width, int height,
+                       std::uint64_t seed) {
+    const int channels = int(model.chemicals().size());
+    State state(width, height, channels);
+
+    // Which cells take the `inside` values.
+    std::vector<unsigned char> marked(state.cellCount(), 0);
+    if (init.type == InitialCondition::Type::CentreSquare) {
+        const int side =
+            std::max(1, int(std::lround(init.squareFraction * std::min(width, height))));
+        const int x0 = (width - side) / 2, y0 = (height - side) / 2;
+        for (int y = y0; y < y0 + side; ++y)
+            for (int x = x0; x < x0 + side; ++x)
+                marked[std::size_t(y) * width + x] = 1;
+    } else if (init.type == InitialCondition::Type::SeedSpots ||
+               init.type == InitialCondition::Type::JitteredGrid) {
+        // Spot centres: random, or a diamond lattice (rows spacing/2 apart,
+        // every other row shifted by half a spacing) displaced by the jitter.
+        std::vector<std::pair<double, double>> centres;
+        if (init.type == InitialCondition::Type::SeedSpots) {
+            for (int s = 0; s < init.spotCount; ++s)
+                centres.emplace_back(uniform01(seed, 2000, 2 * s) * width,
+                                     uniform01(seed, 2000, 2 * s + 1) * height);
+        } else {
+            const double step = std::max(2.0f, init.spacing);
+            const int rows = std::max(1, int(std::lround(2.0 * height / step)));
+            const int columns = std::max(1, int(std::lround(width / step)));
+            for (int j = 0; j < rows; ++j)
+                for (int i = 0; i < columns; ++i) {
+                    const std::uint64_t k = std::uint64_t(j) * columns + i;
+                    const double dx = init.jitter * step * uniformSigned(seed, 2001, 2 * k);
+                    const double dy = init.jitter * step * uniformSigned(seed, 2001, 2 * k + 1);
+                    centres.emplace_back((i + 0.5 * (j % 2)) * width / double(columns) + dx,
+                                         (j + 0.5) * height / double(rows) + dy);
+                }
+        }
+        const float r = init.spotRadius;
+        const int reach = int(std::ceil(r));
+        for (const auto& [fx, fy] : centres) {
+            const int cx = int(std::floor(fx)), cy = int(std::floor(fy));
+            for (int dy = -reach; dy <= reach; ++dy)
+                for (int dx = -reach; dx <= reach; ++dx) {
+                    if (float(dx * dx + dy * dy) > r * r)
+                        continue;
+                    // Spots wrap around the edges, as a periodic grid would.
+                    const int x = ((cx + dx) % width + width) % width;
+                    const int y = ((cy + dy) % height + height) % height;
+                    marked[std::size_t(y) * width + x] = 1;
+                }
+        }
+    }
+
+    for (int c = 0; c < channels; ++c) {
+        const std::string& name = model.chemicals()[std::size_t(c)].name;
+        const float base = lookup(init.base, name, 0.0f);
+        const float inside = lookup(init.inside, name, base);
+        const float noise = lookup(init.noise, name, 0.0f);
+        float* plane = state.plane(c);
+        for (std::size_t i = 0; i < state.cellCount(); ++i) {
+            const float value = marked[i] ? inside : base;
+            plane[i] = noise == 0.0f
+                           ? value
+                           : float(value + noise * uniformSigned(seed, std::uint64_t(c), i));
+        }
+    }
+    model.prepareState(state, params, seed);
+    return state;
+}
+
+} // namespace morphogen

@@ -1,0 +1,178 @@
+#include "core/operators/diffusion_operator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/numerics/kernel_symbol.hpp"
+#include "core/operators/orientation_field.hpp"
+#include "core/session/session.hpp"
+#include "core/numerics/tensor_sequence.hpp"
+
+namespace morphogen {
+
+namespace {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+float rateOf(const Session& session, const ChemicalSpec& chemical) {
+    return chemical.diffusionParam.empty() ? 0.0f : session.params.at(chemical.diffusionParam);
+}
+
+// Tensor components are given in display coordinates (y up), the paper's and
+// the propagator's convention; the grid's rows grow downward, so mirror.
+Kernel5 displayOriented(const Kernel5& grid) {
+    Kernel5 k;
+    for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx)
+            k.at(dx, dy) = grid.at(dx, -dy);
+    return k;
+}
+
+} // namespace
+
+Kernel5 anisotropicKernel(const AnisotropicTensor& t, float rate) {
+    // Principal direction v = (cos, -sin) in grid coordinates (rows grow downward).
+    const double c = std::cos(t.theta * kDegree), s = std::sin(t.theta * kDegree);
+    const double a1 = double(t.a1) * t.a1, a2 = double(t.a2) * t.a2;
+    const double axx = a1 * c * c + a2 * s * s;
+    const double ayy = a1 * s * s + a2 * c * c;
+    const double axy = -(a1 - a2) * c * s;
+    Kernel5 k;
+    k.at(-1, 0) = k.at(1, 0) = axx;
+    k.at(0, -1) = k.at(0, 1) = ayy;
+    k.at(0, 0) = -2.0 * (axx + ayy);
+    // 2 A_xy d2c/dxdy with the 4-corner central difference (corner sum / 4).
+    k.at(1, 1) = k.at(-1, -1) = 0.5 * axy;
+    k.at(1, -1) = k.at(-1, 1) = -0.5 * axy;
+    return k.scaled(rate);
+}
+
+DiffusionOperator compileDiffusion(const Session& session) {
+    const ReactionModel& model = session.reactionModel();
+    const DiffusionSpec& spec = session.diffusion;
+    DiffusionOperator op;
+    op.chemicals = int(model.chemicals().size());
+    // On a coarse level (cells h times the finest) an order-n derivative
+    // shrinks by h^n: second-order terms by h^2.
+    const double spacing = session.gridSpacing;
+    for (int c = 0; c < op.chemicals; ++c)
+        op.rates[std::size_t(c)] =
+            float(rateOf(session, model.chemicals()[std::size_t(c)]) / (spacing * spacing));
+
+    switch (spec.type) {
+    case DiffusionType::Isotropic:
+        op.form = spec.stencil == Stencil::FivePoint ? DiffusionOperator::Form::Laplacian5
+                                                     : DiffusionOperator::Form::Laplacian9;
+        return op;
+    case DiffusionType::Generalized: {
+        GeneralizedOperatorOptions options;
+        options.sg.radius = spec.savitzkyGolay.window / 2;
+        options.sg.degree = spec.savitzkyGolay.degree;
+        options.centralSecondDerivatives = spec.savitzkyGolay.centralSecondOrder;
+        int radius = 1;
+        for (int c = 0; c < op.chemicals; ++c) {
+            const std::string& name = model.chemicals()[std::size_t(c)].name;
+            auto it = spec.generalized.find(name);
+            // Chemicals without a tensor sequence diffuse isotropically (set (a)).
+            TensorSequence sequence =
+                it == spec.generalized.end() ? tableTwoSet('a') : parseTensorSequence(it->second);
+            // rates[] already holds 1/h^2; ranks 3 and 4 need 1/h and 1/h^2 more.
+            for (std::size_t i = 0; i < sequence.values.size(); ++i)
+                sequence.values[i] /= std::pow(spacing, tensorComponents()[i].rank - 2);
+            Kernel5 kernel = displayOriented(generalizedDiffusionKernel(sequence, options))
+                                 .scaled(op.rates[std::size_t(c)]);
+            if (spec.stabilize) {
+                const StabilizedKernel stable = stabilizeKernel(kernel);
+                kernel = stable.kernel;
+                op.stabilization[std::size_t(c)] = stable.eta;
+            }
+            op.kernels[std::size_t(c)] = kernel;
+            radius = std::max(radius, kernel.radius());
+        }
+        op.form = radius == 1 ? DiffusionOperator::Form::Kernel3 : DiffusionOperator::Form::Kernel5;
+        return op;
+    }
+    case DiffusionType::Anisotropic:
+        break;
+    }
+
+    // Chemicals without a tensor diffuse isotropically at their rate.
+    auto tensorOf = [&](int c) {
+        auto it = spec.anisotropic.find(model.chemicals()[std::size_t(c)].name);
+        return it == spec.anisotropic.end() ? AnisotropicTensor{} : it->second;
+    };
+    if (!spec.map) {
+        op.form = DiffusionOperator::Form::Kernel3;
+        for (int c = 0; c < op.chemicals; ++c)
+            op.kernels[std::size_t(c)] = anisotropicKernel(tensorOf(c), op.rates[std::size_t(c)]);
+        return op;
+    }
+
+    op.form = DiffusionOperator::Form::TensorMap;
+    const int w = session.width, h = session.height;
+    const std::vector<float> angles =
+        orientationAngles(spec.map->orientation, w, h, session.baseDir);
+    std::vector<float> scale(std::size_t(w) * h, spec.map->scaleMax);
+    if (!spec.map->scaleImage.empty()) {
+        std::string path = spec.map->scaleImage;
+        if (!session.baseDir.empty() && path.front() != '/')
+            path = session.baseDir + "/" + path;
+        const std::vector<float> lum = loadLuminance(path, w, h);
+        for (std::size_t i = 0; i < scale.size(); ++i)
+            scale[i] = spec.map->scaleMin +
+                       (spec.map->scaleMax - spec.map->scaleMin) * std::clamp(lum[i], 0.0f, 1.0f);
+    }
+    op.map = State(w, h, 3);
+    for (std::size_t i = 0; i < scale.size(); ++i) {
+        op.map.plane(0)[i] = scale[i];
+        op.map.plane(1)[i] = float(scale[i] * std::cos(2.0 * angles[i]));
+        op.map.plane(2)[i] = float(scale[i] * std::sin(2.0 * angles[i]));
+    }
+    for (int c = 0; c < op.chemicals; ++c) {
+        const AnisotropicTensor t = tensorOf(c);
+        const double rate = op.rates[std::size_t(c)];
+        const double a1 = double(t.a1) * t.a1, a2 = double(t.a2) * t.a2;
+        const double m = rate * (a1 + a2) / 2, d = rate * (a1 - a2) / 2;
+        op.mapCoefficients[std::size_t(c)] = {float(m), float(d * std::cos(2 * t.theta * kDegree)),
+                                              float(d * std::sin(2 * t.theta * kDegree))};
+    }
+    return op;
+}
+
+double diffusionSymbolBound(const DiffusionOperator& op) {
+    double bound = 0;
+    for (int c = 0; c < op.chemicals; ++c) {
+        const std::size_t i = std::size_t(c);
+        switch (op.form) {
+        case DiffusionOperator::Form::Laplacian5:
+            bound = std::max(bound, 8.0 * op.rates[i]);
+            break;
+        case DiffusionOperator::Form::Laplacian9:
+            bound = std::max(bound, 16.0 / 3.0 * op.rates[i]);
+            break;
+        case DiffusionOperator::Form::Kernel3:
+        case DiffusionOperator::Form::Kernel5: {
+            double sum = 0;
+            for (double w : op.kernels[i].w)
+                sum += std::fabs(w);
+            bound = std::max(bound, sum);
+            break;
+        }
+        case DiffusionOperator::Form::TensorMap: {
+            // |A| <= s (|m| + |d|); the conservative stencil's weights sum to at most 8 |A|.
+            float smax = 0;
+            for (std::size_t k = 0; k < op.map.cellCount(); ++k)
+                smax = std::max(smax, std::fabs(op.map.plane(0)[k]));
+            const auto& mc = op.mapCoefficients[i];
+            const double d = std::hypot(mc[1], mc[2]);
+            bound = std::max(bound, 8.0 * smax * (std::fabs(mc[0]) + d));
+            break;
+        }
+        }
+    }
+    return bound;
+}
+
+} // namespace morphogen

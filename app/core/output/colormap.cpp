@@ -1,0 +1,117 @@
+#include "core/output/colormap.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/base/errors.hpp"
+
+namespace morphogen {
+
+namespace {
+
+using Rgb = std::array<float, 3>;
+
+Rgb hex(unsigned v) {
+    return {float((v >> 16) & 0xff) / 255.0f, float((v >> 8) & 0xff) / 255.0f,
+            float(v & 0xff) / 255.0f};
+}
+
+// Perceptual palettes as evenly spaced anchors (matplotlib's viridis, magma,
+// inferno; a cool-warm diverging map), interpolated piecewise linearly.
+const std::vector<Rgb>& anchors(const std::string& name) {
+    static const std::vector<Rgb> viridis = {
+        hex(0x440154), hex(0x482878), hex(0x3e4989), hex(0x31688e), hex(0x26828e),
+        hex(0x1f9e89), hex(0x35b779), hex(0x6ece58), hex(0xb5de2b), hex(0xfde725)};
+    static const std::vector<Rgb> magma = {hex(0x000004), hex(0x1c1044), hex(0x4f127b),
+                                           hex(0x812581), hex(0xb5367a), hex(0xe55964),
+                                           hex(0xfb8761), hex(0xfec287), hex(0xfcfdbf)};
+    static const std::vector<Rgb> inferno = {hex(0x000004), hex(0x1f0c48), hex(0x550f6d),
+                                             hex(0x88226a), hex(0xba3655), hex(0xe35933),
+                                             hex(0xf98e09), hex(0xf9cb35), hex(0xfcffa4)};
+    static const std::vector<Rgb> coolwarm = {hex(0x3b4cc0), hex(0x7093f3), hex(0xaac7fd),
+                                              hex(0xdddddd), hex(0xf7b89c), hex(0xe7755b),
+                                              hex(0xb40426)};
+    if (name == "viridis")
+        return viridis;
+    if (name == "magma")
+        return magma;
+    if (name == "inferno")
+        return inferno;
+    return coolwarm;
+}
+
+Rgb lerp(const Rgb& a, const Rgb& b, float t) {
+    return {a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t};
+}
+
+Rgb samplePalette(const std::vector<Rgb>& palette, float t) {
+    const float x = std::clamp(t, 0.0f, 1.0f) * float(palette.size() - 1);
+    const std::size_t i = std::min(std::size_t(x), palette.size() - 2);
+    return lerp(palette[i], palette[i + 1], x - float(i));
+}
+
+} // namespace
+
+const std::vector<std::string>& colormapNames() {
+    static const std::vector<std::string> names = {"grey",  "two-colour", "viridis",
+                                                   "magma", "inferno",    "coolwarm"};
+    return names;
+}
+
+void checkColormapName(const std::string& name) {
+    const auto& names = colormapNames();
+    if (std::find(names.begin(), names.end(), name) != names.end())
+        return;
+    std::string list;
+    for (const std::string& n : names)
+        list += (list.empty() ? "" : ", ") + n;
+    throw InputError("colour map '" + name + "' is unknown (accepted: " + list + ")");
+}
+
+int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model) {
+    if (spec.chemical.empty())
+        return model.displayChemical();
+    const int index = model.chemicalIndex(spec.chemical);
+    if (index < 0)
+        throw InputError("colour map chemical '" + spec.chemical + "' is not a chemical of " +
+                         model.name());
+    return index;
+}
+
+std::vector<float> applyColormap(const State& state, int chemical, const ColorMapSpec& spec) {
+    checkColormapName(spec.name);
+    const float* p = state.plane(chemical);
+    const std::size_t n = state.cellCount();
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (std::size_t i = 0; i < n; ++i)
+        if (std::isfinite(p[i])) {
+            lo = std::min(lo, p[i]);
+            hi = std::max(hi, p[i]);
+        }
+    // A flat field maps to the low end: stretching float round-off (a range
+    // of a few ulps) to the full palette would invent a pattern.
+    const float range = hi - lo;
+    const float magnitude = std::max({1.0f, std::fabs(lo), std::fabs(hi)});
+    const float scale = range > 1e-5f * magnitude ? 1.0f / range : 0.0f;
+    const float levelLow = spec.levels[0], levelScale = 1.0f / (spec.levels[1] - spec.levels[0]);
+
+    std::vector<float> rgb(n * 3);
+    for (std::size_t i = 0; i < n; ++i) {
+        const float normalised = std::isfinite(p[i]) ? (p[i] - lo) * scale : 0.0f;
+        const float t = std::clamp((normalised - levelLow) * levelScale, 0.0f, 1.0f);
+        Rgb c;
+        if (spec.name == "grey")
+            c = {t, t, t};
+        else if (spec.name == "two-colour")
+            c = lerp(spec.low, spec.high, t);
+        else
+            c = samplePalette(anchors(spec.name), t);
+        rgb[i * 3 + 0] = c[0];
+        rgb[i * 3 + 1] = c[1];
+        rgb[i * 3 + 2] = c[2];
+    }
+    return rgb;
+}
+
+} // namespace morphogen

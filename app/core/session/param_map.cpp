@@ -1,0 +1,194 @@
+#include "core/session/param_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "core/io/image_io.hpp"
+#include "core/base/json_fields.hpp"
+#include "core/base/random.hpp"
+#include "core/models/reaction_model.hpp"
+#include "core/session/session.hpp"
+
+namespace morphogen {
+
+using nlohmann::json;
+
+namespace {
+
+const std::pair<ParamMapSpec::Field, const char*> kFields[] = {
+    {ParamMapSpec::Field::LinearX, "linear_x"}, {ParamMapSpec::Field::LinearY, "linear_y"},
+    {ParamMapSpec::Field::Radial, "radial"},    {ParamMapSpec::Field::Noise, "noise"},
+    {ParamMapSpec::Field::Image, "image"},      {ParamMapSpec::Field::Tiles, "tiles"}};
+
+// Value noise: random values on a lattice `scale` cells apart, smoothstep-
+// interpolated; the lattice wraps so the field tiles on a periodic grid.
+float valueNoise(double x, double y, int cellsX, int cellsY, std::uint64_t seed) {
+    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    const double fx = x - x0, fy = y - y0;
+    auto lattice = [&](int i, int j) {
+        i = ((i % cellsX) + cellsX) % cellsX;
+        j = ((j % cellsY) + cellsY) % cellsY;
+        return uniform01(seed, 3000, std::uint64_t(j) * std::uint64_t(cellsX) + std::uint64_t(i));
+    };
+    auto smooth = [](double t) { return t * t * (3 - 2 * t); };
+    const double sx = smooth(fx), sy = smooth(fy);
+    const double top = lattice(x0, y0) * (1 - sx) + lattice(x0 + 1, y0) * sx;
+    const double bottom = lattice(x0, y0 + 1) * (1 - sx) + lattice(x0 + 1, y0 + 1) * sx;
+    return float(top * (1 - sy) + bottom * sy);
+}
+
+} // namespace
+
+std::string toString(ParamMapSpec::Field field) {
+    for (const auto& [f, name] : kFields)
+        if (f == field)
+            return name;
+    return "linear_x";
+}
+
+std::vector<float> evaluateParamMap(const ParamMapSpec& spec, int width, int height,
+                                    std::uint64_t seed, const std::string& baseDir) {
+    std::vector<float> t(std::size_t(width) * height);
+    if (spec.field == ParamMapSpec::Field::Tiles) {
+        // Values as given, not a t in [0, 1]: a tile's value must be exactly
+        // the one its standalone session would use.
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const int column = x * spec.tilesX / width;
+                const int row = spec.tilesY - 1 - y * spec.tilesY / height;
+                t[std::size_t(y) * width + x] =
+                    spec.tileValues[std::size_t(row) * spec.tilesX + column];
+            }
+        return t;
+    }
+    if (spec.field == ParamMapSpec::Field::Image) {
+        std::string path = spec.image;
+        if (!baseDir.empty() && !std::filesystem::path(path).is_absolute())
+            path = (std::filesystem::path(baseDir) / path).string();
+        t = loadLuminance(path, width, height);
+    } else {
+        const int cellsX = std::max(1, int(std::lround(width / spec.scale)));
+        const int cellsY = std::max(1, int(std::lround(height / spec.scale)));
+        const double halfDiagonal = 0.5 * std::hypot(width, height);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                double v = 0;
+                switch (spec.field) {
+                case ParamMapSpec::Field::LinearX:
+                    v = width > 1 ? double(x) / (width - 1) : 0.0;
+                    break;
+                case ParamMapSpec::Field::LinearY:
+                    v = height > 1 ? double(height - 1 - y) / (height - 1) : 0.0;
+                    break;
+                case ParamMapSpec::Field::Radial:
+                    v = std::hypot(x + 0.5 - spec.centreX * width,
+                                   y + 0.5 - spec.centreY * height) /
+                        halfDiagonal;
+                    break;
+                case ParamMapSpec::Field::Noise:
+                    v = valueNoise(double(x) * cellsX / width, double(y) * cellsY / height, cellsX,
+                                   cellsY, seed);
+                    break;
+                case ParamMapSpec::Field::Image:
+                case ParamMapSpec::Field::Tiles:
+                    break;
+                }
+                t[std::size_t(y) * width + x] = float(v);
+            }
+    }
+    std::vector<float> values(t.size());
+    for (std::size_t i = 0; i < t.size(); ++i)
+        values[i] = spec.min + (spec.max - spec.min) * std::clamp(t[i], 0.0f, 1.0f);
+    return values;
+}
+
+std::map<std::string, ParamMapSpec> paramMapsFromJson(const json& j, const std::string& source,
+                                                      const ReactionModel& model) {
+    FieldReader maps(j, source, "param_maps");
+    std::map<std::string, ParamMapSpec> result;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        const ParamSpec* param = model.param(it.key());
+        if (!param)
+            maps.failField(it.key(), "is not a parameter of model '" + model.name() + "'");
+        FieldReader reader(*it, source, maps.path(it.key()));
+        reader.rejectUnknown({"field", "range", "scale", "centre", "image", "tiles", "values"});
+        ParamMapSpec spec;
+        const std::string field = reader.string("field", "linear_x");
+        bool known = false;
+        std::string names;
+        for (const auto& [f, name] : kFields) {
+            names += (names.empty() ? "" : ", ") + std::string(name);
+            if (field == name) {
+                spec.field = f;
+                known = true;
+            }
+        }
+        if (!known)
+            reader.failField("field", "is '" + field + "', accepted: " + names);
+        if (spec.field == ParamMapSpec::Field::Tiles) {
+            const json* tiles = reader.find("tiles");
+            if (!tiles || !tiles->is_array() || tiles->size() != 2)
+                reader.failField("tiles", "must be [columns, rows]");
+            spec.tilesX = int(reader.numberValue((*tiles)[0], "tiles[0]", 1, kMaxGridSide));
+            spec.tilesY = int(reader.numberValue((*tiles)[1], "tiles[1]", 1, kMaxGridSide));
+            const json* values = reader.find("values");
+            if (!values || !values->is_array() ||
+                values->size() != std::size_t(spec.tilesX) * std::size_t(spec.tilesY))
+                reader.failField("values", "must hold columns x rows values, bottom row first");
+            for (std::size_t i = 0; i < values->size(); ++i)
+                spec.tileValues.push_back(float(reader.numberValue(
+                    (*values)[i], "values[" + std::to_string(i) + "]", param->min, param->max)));
+            const auto [lo, hi] =
+                std::minmax_element(spec.tileValues.begin(), spec.tileValues.end());
+            spec.min = *lo;
+            spec.max = *hi;
+            result[it.key()] = spec;
+            continue;
+        }
+        const json* range = reader.find("range");
+        if (!range || !range->is_array() || range->size() != 2)
+            reader.failField("range", "must be [min, max] within the parameter's range");
+        spec.min = float(reader.numberValue((*range)[0], "range[0]", param->min, param->max));
+        spec.max = float(reader.numberValue((*range)[1], "range[1]", param->min, param->max));
+        spec.scale = float(reader.number("scale", spec.scale, 1.0, 1e5));
+        if (const json* centre = reader.find("centre")) {
+            if (!centre->is_array() || centre->size() != 2)
+                reader.failField("centre", "must be [x, y], fractions of the grid");
+            spec.centreX = float(reader.numberValue((*centre)[0], "centre[0]", -10, 10));
+            spec.centreY = float(reader.numberValue((*centre)[1], "centre[1]", -10, 10));
+        }
+        spec.image = reader.string("image", "");
+        if (spec.field == ParamMapSpec::Field::Image && spec.image.empty())
+            reader.failField("image", "is required for an image field");
+        result[it.key()] = spec;
+    }
+    return result;
+}
+
+json paramMapsToJson(const std::map<std::string, ParamMapSpec>& maps) {
+    json j = json::object();
+    for (const auto& [name, spec] : maps) {
+        json m;
+        m["field"] = toString(spec.field);
+        if (spec.field == ParamMapSpec::Field::Tiles) {
+            m["tiles"] = {spec.tilesX, spec.tilesY};
+            m["values"] = spec.tileValues;
+            j[name] = m;
+            continue;
+        }
+        m["range"] = {spec.min, spec.max};
+        if (spec.field == ParamMapSpec::Field::Noise)
+            m["scale"] = spec.scale;
+        if (spec.field == ParamMapSpec::Field::Radial)
+            m["centre"] = {spec.centreX, spec.centreY};
+        if (!spec.image.empty())
+            m["image"] = spec.image;
+        j[name] = m;
+    }
+    return j;
+}
+
+} // namespace morphogen

@@ -1,0 +1,399 @@
+#include "core/session/session.hpp"
+
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/base/embedded_files.hpp"
+#include "core/base/errors.hpp"
+#include "core/base/json_fields.hpp"
+
+namespace morphogen {
+
+using nlohmann::json;
+
+std::string toString(Integrator integrator) {
+    return integrator == Integrator::ExplicitEuler ? "explicit_euler" : "semi_implicit";
+}
+
+std::string toString(EdgeMode mode) {
+    return mode == EdgeMode::Periodic ? "periodic" : "clamped";
+}
+
+const ReactionModel& Session::reactionModel() const {
+    const ReactionModel* m = findModel(model);
+    assert(m && "sessionFromJson rejects unknown models");
+    return *m;
+}
+
+const ReactionModel& Session::outputModel() const {
+    return stages.empty() ? reactionModel()
+                          : stageModel(stages, stages.size() - 1, reactionModel());
+}
+
+namespace {
+
+std::array<float, 3> colour(const FieldReader& reader, const std::string& key,
+                            std::array<float, 3> fallback) {
+    const json* j = reader.find(key);
+    if (!j)
+        return fallback;
+    if (!j->is_array() || j->size() != 3)
+        reader.failField(key, "must be an array of 3 numbers in [0, 1] (sRGB)");
+    std::array<float, 3> rgb{};
+    for (std::size_t i = 0; i < 3; ++i)
+        rgb[i] = float(reader.numberValue((*j)[i], key + "[" + std::to_string(i) + "]", 0, 1));
+    return rgb;
+}
+
+} // namespace
+
+Session sessionFromJson(const json& root, const std::string& source) {
+    FieldReader top(root, source, "");
+    top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
+                       "integrator", "relaxation_passes", "jacobi_sweeps", "schedule", "stages", "param_maps", "dt",
+                       "steps", "seed", "init", "colormap"});
+    Session s;
+    s.name = top.string("name", "");
+    s.description = top.string("description", "");
+    s.model = top.string("model", s.model);
+    const ReactionModel* model = findModel(s.model);
+    if (!model)
+        top.failField("model",
+                      "is '" + s.model + "', not a known model (known: " + modelNames() + ")");
+
+    for (const ParamSpec& p : model->params())
+        s.params[p.name] = p.defaultValue;
+    if (const json* params = top.find("params")) {
+        FieldReader reader(*params, source, "params");
+        for (auto it = params->begin(); it != params->end(); ++it) {
+            const ParamSpec* spec = model->param(it.key());
+            if (!spec)
+                reader.fail("field 'params." + it.key() + "'",
+                            "is not a parameter of model '" + model->name() +
+                                "' (parameters: " + model->paramNames() + ")");
+            s.params[it.key()] = float(reader.numberValue(*it, it.key(), spec->min, spec->max));
+        }
+    }
+
+    if (const json* size = top.find("size")) {
+        if (size->is_number_integer()) {
+            s.width = s.height = int(top.integer("size", 0, 1, kMaxGridSide));
+        } else if (size->is_array() && size->size() == 2) {
+            FieldReader dummy(json::object(), source, "");
+            s.width = int(dummy.numberValue((*size)[0], "size[0]", 1, kMaxGridSide));
+            s.height = int(dummy.numberValue((*size)[1], "size[1]", 1, kMaxGridSide));
+            if (!(*size)[0].is_number_integer() || !(*size)[1].is_number_integer())
+                top.failField("size", "must hold integers");
+        } else {
+            top.failField("size", "must be an integer N or an array [W, H], got " + size->dump());
+        }
+    }
+
+    const std::string edges = top.string("edges", "periodic");
+    if (edges == "periodic")
+        s.edges = EdgeMode::Periodic;
+    else if (edges == "clamped")
+        s.edges = EdgeMode::Clamped;
+    else
+        top.failField("edges", "is '" + edges + "', accepted: periodic, clamped");
+
+    // Like "init", a session's "diffusion" replaces the model's default whole.
+    s.diffusion = model->defaultDiffusion();
+    if (const json* diffusion = top.find("diffusion"))
+        s.diffusion = diffusionFromJson(*diffusion, source, *model);
+
+    const std::string integrator = top.string("integrator", "explicit_euler");
+    if (integrator == "explicit_euler")
+        s.integrator = Integrator::ExplicitEuler;
+    else if (integrator == "semi_implicit")
+        s.integrator = Integrator::SemiImplicit;
+    else
+        top.failField("integrator",
+                      "is '" + integrator + "', accepted: explicit_euler, semi_implicit");
+    // "jacobi_sweeps" is the name sessions written before the rename use.
+    s.relaxationPasses = int(top.integer("jacobi_sweeps", s.relaxationPasses, 1, 1000));
+    s.relaxationPasses = int(top.integer("relaxation_passes", s.relaxationPasses, 1, 1000));
+
+    s.dt = float(top.number("dt", model->defaultDt(), 1e-6, 100.0));
+    s.steps = int(top.integer("steps", s.steps, 0, 100000000));
+    s.seed = std::uint64_t(top.integer("seed", 1, 0, (1LL << 53)));
+
+    if (const json* schedule = top.find("schedule")) {
+        if (!schedule->is_array() || schedule->empty())
+            top.failField("schedule", "must be a non-empty array of {\"size\": N or [W, H], "
+                                      "\"steps\": N}, coarsest first");
+        for (std::size_t i = 0; i < schedule->size(); ++i) {
+            FieldReader level((*schedule)[i], source, "schedule[" + std::to_string(i) + "]");
+            level.rejectUnknown({"size", "steps"});
+            ScheduleLevel l;
+            const json* size = level.find("size");
+            if (size && size->is_array() && size->size() == 2) {
+                l.width = int(level.numberValue((*size)[0], "size[0]", 1, kMaxGridSide));
+                l.height = int(level.numberValue((*size)[1], "size[1]", 1, kMaxGridSide));
+            } else {
+                l.width = l.height = int(level.integer("size", 0, 1, kMaxGridSide));
+            }
+            l.steps = int(level.integer("steps", 0, 0, 100000000));
+            s.schedule.push_back(l);
+        }
+        applySchedule(s, s.schedule);
+    }
+    if (const json* stages = top.find("stages")) {
+        if (!s.schedule.empty())
+            top.failField("stages", "cannot be combined with a coarse-to-fine schedule");
+        s.stages = stagesFromJson(*stages, source, *model);
+        s.steps = 0;
+        bool changesModel = false;
+        for (const Stage& stage : s.stages) {
+            s.steps += stage.steps;
+            changesModel = changesModel || !stage.model.empty();
+        }
+        // Anisotropic and generalized diffusion name the session model's chemicals.
+        if (changesModel && s.diffusion.type != DiffusionType::Isotropic)
+            top.failField("stages", "change the model, which needs isotropic diffusion (field "
+                                    "'diffusion' has type '" +
+                                        toString(s.diffusion.type) + "')");
+    }
+    if (const json* maps = top.find("param_maps")) {
+        if (!s.schedule.empty())
+            top.failField("param_maps", "cannot be combined with a coarse-to-fine schedule");
+        s.paramMaps = paramMapsFromJson(*maps, source, *model);
+        for (const Stage& stage : s.stages)
+            if (!stage.model.empty())
+                top.failField("param_maps", "cannot be combined with a stage that changes the "
+                                            "model (they are maps of model '" +
+                                                model->name() + "' parameters)");
+        for (const Stage& stage : s.stages)
+            for (const auto& [name, value] : stage.params)
+                if (s.paramMaps.count(name))
+                    top.failField("stages",
+                                  "change '" + name + "', which param_maps sets per cell");
+    }
+
+    // A session's "init" replaces the model's default start whole: fields it
+    // leaves out are empty, not inherited.
+    s.init = model->defaultInit();
+    if (const json* init = top.find("init"))
+        s.init = initialConditionFromJson(*init, source, "init", *model);
+
+    if (const json* cm = top.find("colormap")) {
+        FieldReader reader(*cm, source, "colormap");
+        reader.rejectUnknown({"name", "chemical", "low", "high", "levels"});
+        s.colormap.name = reader.string("name", s.colormap.name);
+        s.colormap.chemical = reader.string("chemical", "");
+        // The colours show the final state: the last stage's model's chemicals.
+        const ReactionModel& shown = s.outputModel();
+        if (!s.colormap.chemical.empty() && shown.chemicalIndex(s.colormap.chemical) < 0)
+            reader.failField("chemical", "is '" + s.colormap.chemical +
+                                             "', not a chemical of model '" + shown.name() + "'" +
+                                             (&shown != model ? " (the last stage's model)" : ""));
+        s.colormap.low = colour(reader, "low", s.colormap.low);
+        s.colormap.high = colour(reader, "high", s.colormap.high);
+        if (const json* levels = reader.find("levels")) {
+            if (!levels->is_array() || levels->size() != 2)
+                reader.failField("levels",
+                                 "must be an array [low, high] with 0 <= low < high <= 1");
+            for (std::size_t i = 0; i < 2; ++i)
+                s.colormap.levels[i] = float(
+                    reader.numberValue((*levels)[i], "levels[" + std::to_string(i) + "]", 0, 1));
+            if (!(s.colormap.levels[0] < s.colormap.levels[1]))
+                reader.failField("levels",
+                                 "must be an array [low, high] with 0 <= low < high <= 1");
+        }
+    }
+    return s;
+}
+
+json sessionToJson(const Session& s) {
+    json j;
+    if (!s.name.empty())
+        j["name"] = s.name;
+    if (!s.description.empty())
+        j["description"] = s.description;
+    j["model"] = s.model;
+    j["params"] = s.params;
+    j["size"] = json::array({s.width, s.height});
+    j["edges"] = toString(s.edges);
+    j["diffusion"] = diffusionToJson(s.diffusion);
+    j["integrator"] = toString(s.integrator);
+    if (s.integrator == Integrator::SemiImplicit)
+        j["relaxation_passes"] = s.relaxationPasses;
+    if (!s.stages.empty())
+        j["stages"] = stagesToJson(s.stages);
+    if (!s.paramMaps.empty())
+        j["param_maps"] = paramMapsToJson(s.paramMaps);
+    if (!s.schedule.empty()) {
+        j["schedule"] = json::array();
+        for (const ScheduleLevel& l : s.schedule)
+            j["schedule"].push_back({{"size", {l.width, l.height}}, {"steps", l.steps}});
+    }
+    j["dt"] = s.dt;
+    j["steps"] = s.steps;
+    j["seed"] = s.seed;
+    j["init"] = initialConditionToJson(s.init);
+    json cm;
+    cm["name"] = s.colormap.name;
+    if (!s.colormap.chemical.empty())
+        cm["chemical"] = s.colormap.chemical;
+    cm["low"] = s.colormap.low;
+    cm["high"] = s.colormap.high;
+    if (s.colormap.levels != ColorMapSpec{}.levels)
+        cm["levels"] = s.colormap.levels;
+    j["colormap"] = cm;
+    return j;
+}
+
+Session loadSessionFile(const std::string& path) {
+    std::ifstream in(path);
+    if (!in)
+        throw InputError(path + ": cannot open session file (does it exist and is it readable?)");
+    json j;
+    try {
+        j = json::parse(in);
+    } catch (const json::parse_error& e) {
+        throw InputError(path + ": not valid JSON: " + e.what());
+    }
+    Session s = sessionFromJson(j, path);
+    s.baseDir = std::filesystem::path(path).parent_path().string();
+    validateSession(s, path);
+    return s;
+}
+
+void saveSessionFile(const Session& session, const std::string& path) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream out(tmp);
+        if (!out)
+            throw InputError(path + ": cannot write the session file (is the folder writable?)");
+        out << sessionToJson(session).dump(2) << "\n";
+        if (!out)
+            throw InputError(path + ": writing the session file failed");
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec)
+        throw InputError(path + ": cannot move the session file into place: " + ec.message());
+}
+
+std::vector<Session> allPresets() {
+    std::vector<Session> presets;
+    for (std::string_view path : embeddedFiles("models/presets/")) {
+        const std::string source(path);
+        json j;
+        try {
+            j = json::parse(*embeddedFile(path));
+        } catch (const json::parse_error& e) {
+            throw InputError(source + ": not valid JSON: " + e.what());
+        }
+        Session s = sessionFromJson(j, source);
+        if (s.name.empty())
+            s.name = std::filesystem::path(source).stem().string();
+        presets.push_back(std::move(s));
+    }
+    return presets;
+}
+
+Session loadPreset(const std::string& name) {
+    std::string names;
+    for (Session& s : allPresets()) {
+        if (s.name == name)
+            return s;
+        names += (names.empty() ? "" : ", ") + s.name;
+    }
+    throw InputError("unknown preset '" + name + "' (known: " + names +
+                     "; `morphogen presets` lists them)");
+}
+
+void applyParamOverride(Session& session, const std::string& assignment) {
+    const auto eq = assignment.find('=');
+    const ReactionModel& model = session.reactionModel();
+    if (eq == std::string::npos || eq == 0)
+        throw InputError("--param '" + assignment + "': expected name=value (parameters of " +
+                         model.name() + ": " + model.paramNames() + ")");
+    const std::string name = assignment.substr(0, eq);
+    const std::string text = assignment.substr(eq + 1);
+    const ParamSpec* spec = model.param(name);
+    if (!spec)
+        throw InputError("--param '" + assignment + "': '" + name + "' is not a parameter of " +
+                         model.name() + " (parameters: " + model.paramNames() + ")");
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(v))
+        throw InputError("--param '" + assignment + "': '" + text + "' is not a number");
+    if (v < spec->min || v > spec->max) {
+        std::ostringstream os;
+        os << "--param '" << assignment << "': " << name << " must be in [" << spec->min << ", "
+           << spec->max << "]";
+        throw InputError(os.str());
+    }
+    session.params[name] = float(v);
+}
+
+void applySchedule(Session& session, std::vector<ScheduleLevel> levels) {
+    assert(!levels.empty());
+    session.schedule = std::move(levels);
+    session.width = session.schedule.back().width;
+    session.height = session.schedule.back().height;
+    session.steps = 0;
+    for (const ScheduleLevel& l : session.schedule)
+        session.steps += l.steps;
+}
+
+void applySteps(Session& session, int steps, const std::string& flag) {
+    if (!session.stages.empty())
+        throw InputError(flag + " does not apply to a session with cascade \"stages\" (" +
+                         std::to_string(session.stages.size()) +
+                         " stages of their own steps): edit the stages' \"steps\"");
+    if (!session.schedule.empty())
+        throw InputError(flag + " does not apply to a session with a coarse-to-fine "
+                                "\"schedule\": edit its levels or use --schedule");
+    session.steps = steps;
+}
+
+void validateSession(const Session& s, const std::string& source) {
+    const ReactionModel* model = findModel(s.model);
+    if (!model)
+        throw InputError(source + ": unknown model '" + s.model + "'");
+    for (const ParamSpec& p : model->params()) {
+        auto it = s.params.find(p.name);
+        if (it == s.params.end())
+            throw InputError(source + ": parameter '" + p.name + "' is missing");
+        if (!std::isfinite(it->second) || it->second < p.min || it->second > p.max) {
+            std::ostringstream os;
+            os << source << ": parameter " << p.name << " = " << it->second << " is outside ["
+               << p.min << ", " << p.max << "]";
+            throw InputError(os.str());
+        }
+    }
+    for (std::size_t i = 0; i < s.stages.size(); ++i) {
+        const ReactionModel& m = stageModel(s.stages, i, *model);
+        for (const auto& [name, value] : s.stages[i].params) {
+            const ParamSpec* p = m.param(name);
+            if (!p)
+                throw InputError(source + ": stages[" + std::to_string(i) + "].params." + name +
+                                 " is not a parameter of model '" + m.name() + "'");
+            if (!std::isfinite(value) || value < p->min || value > p->max) {
+                std::ostringstream os;
+                os << source << ": stages[" << i << "].params." << name << " = " << value
+                   << " is outside [" << p->min << ", " << p->max << "]";
+                throw InputError(os.str());
+            }
+        }
+    }
+    if (s.width < 1 || s.height < 1 || s.width > kMaxGridSide || s.height > kMaxGridSide)
+        throw InputError(source + ": size " + std::to_string(s.width) + "x" +
+                         std::to_string(s.height) + " is outside 1.." +
+                         std::to_string(kMaxGridSide) + " per side");
+    if (!(s.dt > 0.0f) || !std::isfinite(s.dt))
+        throw InputError(source + ": dt must be a positive number");
+    if (s.steps < 0)
+        throw InputError(source + ": steps must be >= 0");
+}
+
+} // namespace morphogen

@@ -1,0 +1,118 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "core/session/cascade.hpp"
+#include "core/models/diffusion_spec.hpp"
+#include "core/domain/grid_domain.hpp"
+#include "core/models/initial_condition.hpp"
+#include "core/session/param_map.hpp"
+#include "core/models/reaction_model.hpp"
+
+namespace morphogen {
+
+enum class Integrator {
+    ExplicitEuler, // c' = c + dt (f(c) + A c)                       (McGraw eq. 27)
+    SemiImplicit,  // (I - dt A) c' = c + dt f(c), by relaxation passes   (McGraw eq. 28)
+};
+std::string toString(Integrator integrator);
+
+// One level of a coarse-to-fine schedule (Witkin-Kass 5.2; McGraw's
+// 64 -> 128 -> 256): the grid size and the steps run at it.
+struct ScheduleLevel {
+    int width = 0;
+    int height = 0;
+    int steps = 0;
+};
+
+struct ColorMapSpec {
+    std::string name = "grey"; // see colormap.hpp for the list
+    std::string chemical;      // empty: the model's display chemical
+    // Ends of the "two-colour" blend, display (sRGB) values in [0, 1].
+    std::array<float, 3> low = {0.05f, 0.05f, 0.1f};
+    std::array<float, 3> high = {1.0f, 0.95f, 0.85f};
+    // A window on the min-max normalised value, as an image editor's levels:
+    // t -> clamp((t - levels[0]) / (levels[1] - levels[0]), 0, 1). A narrow
+    // window makes a soft field a sharp-edged pattern (Witkin-Kass's cellular
+    // textures are level sets of a smooth concentration).
+    std::array<float, 2> levels = {0.0f, 1.0f};
+};
+
+// Everything that determines a result: same session, same backend, same seed,
+// the same pixels. Presets are sessions with a name and a description.
+struct Session {
+    std::string name;
+    std::string description;
+    std::string model = "gray_scott";
+    ParamValues params; // complete after normalise()
+    int width = 256;
+    int height = 256;
+    EdgeMode edges = EdgeMode::Periodic;
+    DiffusionSpec diffusion;
+    float dt = 1.0f;
+    int steps = 1000;
+    Integrator integrator = Integrator::ExplicitEuler;
+    int relaxationPasses = 8; // SemiImplicit: sweeps per step
+    // Coarse-to-fine levels, coarsest first; the last must be width x height.
+    // Empty: one level of `steps` at width x height.
+    std::vector<ScheduleLevel> schedule;
+    // Turk's cascades: stages run in order (exclusive with a schedule); the
+    // steps are their total. Empty: one stage of `steps`.
+    std::vector<Stage> stages;
+    // Parameters that vary over the grid, by name.
+    std::map<std::string, ParamMapSpec> paramMaps;
+    // Cell size relative to the finest level (h); coarse levels have h > 1 and
+    // their derivative kernels are scaled by 1/h^order. Set per level, not saved.
+    double gridSpacing = 1.0;
+    std::uint64_t seed = 1;
+    InitialCondition init;
+    ColorMapSpec colormap;
+    // Folder that relative paths in the session (images) resolve against; set
+    // by loadSessionFile, not serialised.
+    std::string baseDir;
+
+    GridDomain domain() const { return {width, height, edges}; }
+    const ReactionModel& reactionModel() const; // asserts a known model
+    // The model whose chemicals the final state holds: the last stage's that
+    // changes model (a cascade such as Turk's giraffe), else reactionModel().
+    const ReactionModel& outputModel() const;
+};
+
+// Largest accepted grid side; the GPU may allow less (checked at allocation).
+constexpr int kMaxGridSide = 16384;
+
+// Parses a session; `source` names the file (or preset) in error messages.
+// Unknown fields, wrong types and out-of-range values throw InputError.
+Session sessionFromJson(const nlohmann::json& json, const std::string& source);
+nlohmann::json sessionToJson(const Session& session);
+
+Session loadSessionFile(const std::string& path);
+// Writes atomically (temporary file, then rename).
+void saveSessionFile(const Session& session, const std::string& path);
+
+// Built-in presets (models/presets/*.json, embedded).
+std::vector<Session> allPresets();
+Session loadPreset(const std::string& name);
+
+// Applies "name=value" to session.params; throws InputError naming the
+// parameter and the accepted names/range.
+void applyParamOverride(Session& session, const std::string& assignment);
+
+// Sets a coarse-to-fine schedule: the grid becomes the last level's and the
+// steps the levels' total.
+void applySchedule(Session& session, std::vector<ScheduleLevel> levels);
+
+// Sets the number of steps of a one-level session; a session with cascade
+// stages or a schedule counts its steps per stage or level, so `flag` (e.g.
+// "--steps") is refused with an InputError saying so.
+void applySteps(Session& session, int steps, const std::string& flag);
+
+// Checks params against the model's ranges and the grid against limits.
+void validateSession(const Session& session, const std::string& source);
+
+} // namespace morphogen

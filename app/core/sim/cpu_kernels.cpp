@@ -1,0 +1,376 @@
+#include "core/sim/cpu_kernels.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cstddef>
+#include <utility>
+
+#include "core/models/gray_scott.hpp"
+#include "core/models/meinhardt_stripes.hpp"
+#include "core/models/turing_mcgraw.hpp"
+#include "core/models/turing_turk.hpp"
+#include "core/models/witkin_kass.hpp"
+#include "core/models/witkin_kass_multi.hpp"
+
+// GCC builds an AVX2 copy of each fused kernel beside the baseline x86-64
+// (SSE2) one and picks per machine when the program loads, so one binary
+// runs anywhere and uses 8-wide vectors where it can. Not "fma", nor
+// "arch=x86-64-v3", which implies it: GCC would then contract a * b + c into
+// fused multiply-adds, and the CPU results would stop matching the generic
+// path, older runs and llvmpipe bit for bit.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define MORPHOGEN_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define MORPHOGEN_VECTOR_CLONES
+#endif
+
+// The loops below must be inlined into the clones to be built for AVX2 too.
+#if defined(__GNUC__)
+#define MORPHOGEN_INLINE inline __attribute__((always_inline))
+#else
+#define MORPHOGEN_INLINE inline
+#endif
+
+namespace morphogen {
+
+namespace {
+
+// --- Diffusion terms -------------------------------------------------------------
+//
+// One chemical's A c at a cell, read through at(dx, dy) (the value dx columns
+// right and dy rows down, already wrapped or clamped). The kernels call at()
+// with constant offsets only, so interior columns become unit-stride loads.
+
+// rate * the 5- or 9-point Laplacian, summed in the order the generic path
+// and the GLSL use; reordering the sums changes the last bits.
+template <Stencil S> class LaplacianTerm {
+public:
+    static constexpr int kRadius = 1;
+
+    LaplacianTerm() = default;
+    LaplacianTerm(const StepConstants& k, int c) : m_rate(k.op.rates[std::size_t(c)]) {}
+
+    bool isZero() const { return m_rate == 0.0f; }
+
+    template <class At> float operator()(const At& at) const {
+        const float sides = at(-1, 0) + at(1, 0) + at(0, -1) + at(0, 1);
+        if constexpr (S == Stencil::FivePoint)
+            return m_rate * (sides - 4.0f * at(0, 0));
+        const float corners = at(-1, -1) + at(1, -1) + at(-1, 1) + at(1, 1);
+        return m_rate * ((4.0f * sides + corners - 20.0f * at(0, 0)) * (1.0f / 6.0f));
+    }
+
+private:
+    float m_rate = 0.0f;
+};
+
+constexpr int absolute(int v) {
+    return v < 0 ? -v : v;
+}
+
+// Taps of a (2R+1)^2 kernel in glsl/step.frag's order: the centre, then
+// each ring outwards, row by row (index (dy + R) * side + dx + R).
+template <int R> constexpr std::array<int, (2 * R + 1) * (2 * R + 1)> tapOrder() {
+    constexpr int side = 2 * R + 1;
+    std::array<int, side * side> order{};
+    std::size_t i = 0;
+    for (int ring = 0; ring <= R; ++ring)
+        for (int dy = -ring; dy <= ring; ++dy)
+            for (int dx = -ring; dx <= ring; ++dx)
+                if (std::max(absolute(dx), absolute(dy)) == ring)
+                    order[i++] = (dy + R) * side + dx + R;
+    return order;
+}
+
+// A chemical's 3x3 (R = 1) or 5x5 (R = 2) kernel, rate included, in float.
+// Zero taps are summed too, as on the GPU: skipping them would only differ
+// for infinite neighbours.
+template <int R> class KernelTerm {
+public:
+    static constexpr int kRadius = R;
+
+    KernelTerm() = default;
+    KernelTerm(const StepConstants& k, int c) {
+        const Kernel5& kernel = k.op.kernels[std::size_t(c)];
+        for (int dy = -R; dy <= R; ++dy)
+            for (int dx = -R; dx <= R; ++dx)
+                m_weights[std::size_t((dy + R) * kSide + dx + R)] = float(kernel.at(dx, dy));
+    }
+
+    bool isZero() const {
+        return std::all_of(m_weights.begin(), m_weights.end(), [](float v) { return v == 0.0f; });
+    }
+
+    template <class At> float operator()(const At& at) const {
+        return sum(at, std::make_index_sequence<kTaps - 1>());
+    }
+
+private:
+    static constexpr int kSide = 2 * R + 1;
+    static constexpr int kTaps = kSide * kSide;
+    static constexpr std::array<int, kTaps> kOrder = tapOrder<R>();
+
+    template <int I, class At> float tap(const At& at) const {
+        return m_weights[std::size_t(I)] * at(I % kSide - R, I / kSide - R);
+    }
+    // A fold rather than a loop, so that every tap's offsets are constants
+    // before the vectoriser runs.
+    template <class At, std::size_t... I> float sum(const At& at, std::index_sequence<I...>) const {
+        float s = tap<kOrder[0]>(at);
+        ((s += tap<kOrder[I + 1]>(at)), ...);
+        return s;
+    }
+
+    std::array<float, kTaps> m_weights{};
+};
+
+// --- Row access ----------------------------------------------------------------
+
+// The 2R+1 rows around y of one plane, wrapped or clamped.
+template <int R>
+MORPHOGEN_INLINE void rowWindow(const float* plane, int y, int w, int h, EdgeMode edges,
+                                const float** rows) {
+    for (int dy = -R; dy <= R; ++dy)
+        rows[dy + R] = plane + std::size_t(GridDomain::wrapOrClamp(y + dy, h, edges)) * w;
+}
+
+// Calls cell(x, column) for every column of a row, column(dx) being the index
+// of the column dx away. Interior columns come first in one unit-stride,
+// vectorised loop; the R columns at each edge wrap or clamp.
+template <int R, class Cell>
+MORPHOGEN_INLINE void forEachColumn(int w, EdgeMode edges, const Cell& cell) {
+    const int x0 = std::min(R, w), x1 = std::max(x0, w - R);
+#pragma omp simd
+    for (int x = x0; x < x1; ++x)
+        cell(x, [x](int dx) { return x + dx; });
+    // One loop with one call, so that GCC inlines it into the AVX2 clone too:
+    // SSE code called from there pays for the switch between encodings.
+    for (int i = 0; i < x0 + w - x1; ++i) {
+        const int x = i < x0 ? i : x1 + i - x0;
+        int columns[2 * R + 1];
+        for (int dx = -R; dx <= R; ++dx)
+            columns[dx + R] = GridDomain::wrapOrClamp(x + dx, w, edges);
+        cell(x, [&columns](int dx) { return columns[dx + R]; });
+    }
+}
+
+// --- Kernels -------------------------------------------------------------------
+
+// Explicit Euler on rows [y0, y1) with Cell's reaction inlined: one pass per
+// row, every chemical's stencil, the reaction, the update and the clamp per
+// cell, and no row buffers. Chemicals that do not diffuse get a term of
+// exactly 0, as the generic path has it (fusedExplicitStep checks their
+// operator is zero).
+template <class Cell, class Term>
+MORPHOGEN_VECTOR_CLONES void stepRows(const StepConstants& k, const State& in, State& out, int y0,
+                                      int y1) {
+    constexpr int n = Cell::kChemicals, r = Term::kRadius;
+    const Cell cell(k.params.data());
+    const int w = in.width(), h = in.height();
+    const EdgeMode edges = k.domain.edges();
+    const float dt = k.dt;
+    Term terms[n];
+    float lo[n], hi[n];
+    for (int c = 0; c < n; ++c) {
+        terms[c] = Term(k, c);
+        lo[c] = k.clampMin[c];
+        hi[c] = k.clampMax[c];
+    }
+    for (int y = y0; y < y1; ++y) {
+        const float* rows[n][2 * r + 1];
+        float* next[n];
+        for (int c = 0; c < n; ++c) {
+            rowWindow<r>(in.plane(c), y, w, h, edges, rows[c]);
+            next[c] = out.plane(c) + std::size_t(y) * w;
+        }
+        forEachColumn<r>(w, edges, [&](int x, const auto& column) {
+            float conc[n], dcdt[n];
+            for (int c = 0; c < n; ++c)
+                conc[c] = rows[c][r][x];
+            cell.react(conc, dcdt);
+            // Unrolled before the vectoriser runs, which a 5x5 body would not be by default.
+#pragma GCC unroll 4
+            for (int c = 0; c < n; ++c) {
+                const float* const* window = rows[c];
+                const float diffusion =
+                    Cell::diffuses(c)
+                        ? terms[c]([&](int dx, int dy) { return window[dy + r][column(dx)]; })
+                        : 0.0f;
+                next[c][x] = std::min(std::max(conc[c] + dt * (dcdt[c] + diffusion), lo[c]), hi[c]);
+            }
+        });
+    }
+}
+
+// rhs = c + dt react(c) on rows [y0, y1).
+template <class Cell>
+MORPHOGEN_VECTOR_CLONES void rhsRows(const StepConstants& k, const State& in, State& out, int y0,
+                                     int y1) {
+    constexpr int n = Cell::kChemicals;
+    const Cell cell(k.params.data());
+    const int w = in.width();
+    const float dt = k.dt;
+    for (int y = y0; y < y1; ++y) {
+        const float* row[n];
+        float* rhs[n];
+        for (int c = 0; c < n; ++c) {
+            row[c] = in.plane(c) + std::size_t(y) * w;
+            rhs[c] = out.plane(c) + std::size_t(y) * w;
+        }
+        // A lambda, so that conc and dcdt are not omp simd's per-lane arrays,
+        // which GCC fails to vectorise.
+        const auto rhsCell = [&](int x) {
+            float conc[n], dcdt[n];
+            for (int c = 0; c < n; ++c)
+                conc[c] = row[c][x];
+            cell.react(conc, dcdt);
+            for (int c = 0; c < n; ++c)
+                rhs[c][x] = conc[c] + dt * dcdt[c];
+        };
+#pragma omp simd
+        for (int x = 0; x < w; ++x)
+            rhsCell(x);
+    }
+}
+
+// One relaxation pass on rows [y0, y1). Chemicals are independent here, so
+// each runs on its own; one with a zero operator skips the stencil (its term
+// is exactly 0, as the generic path's).
+template <class Term>
+MORPHOGEN_VECTOR_CLONES void relaxRows(const StepConstants& k, const State& x, const State& rhs,
+                                       State& out, int y0, int y1) {
+    constexpr int r = Term::kRadius;
+    const int w = x.width(), h = x.height();
+    const EdgeMode edges = k.domain.edges();
+    const float dt = k.dt;
+    for (int c = 0; c < k.chemicals; ++c) {
+        const Term term(k, c);
+        const bool diffuses = !term.isZero();
+        const float omega = k.omega[std::size_t(c)];
+        const float lo = k.clampMin[c], hi = k.clampMax[c];
+        for (int y = y0; y < y1; ++y) {
+            const float* window[2 * r + 1];
+            rowWindow<r>(x.plane(c), y, w, h, edges, window);
+            const float* x0 = window[r];
+            const float* b = rhs.plane(c) + std::size_t(y) * w;
+            float* next = out.plane(c) + std::size_t(y) * w;
+            const auto update = [&](int i, float diffusion) {
+                next[i] =
+                    std::min(std::max(x0[i] + omega * (b[i] - x0[i] + dt * diffusion), lo), hi);
+            };
+            if (!diffuses) {
+#pragma omp simd
+                for (int i = 0; i < w; ++i)
+                    update(i, 0.0f);
+                continue;
+            }
+            forEachColumn<r>(w, edges, [&](int i, const auto& column) {
+                update(i, term([&](int dx, int dy) { return window[dy + r][column(dx)]; }));
+            });
+        }
+    }
+}
+
+// --- Selection -------------------------------------------------------------------
+
+template <class T> struct Tag { using Type = T; };
+
+// Calls pick(Tag<Model::Cell>) for the built-in model `model` is; null for others.
+template <class Pick> StepRowsKernel withCell(const ReactionModel& model, const Pick& pick) {
+    if (dynamic_cast<const GrayScottModel*>(&model) != nullptr)
+        return pick(Tag<GrayScottModel::Cell>());
+    if (dynamic_cast<const TuringTurkModel*>(&model) != nullptr)
+        return pick(Tag<TuringTurkModel::Cell>());
+    if (dynamic_cast<const TuringMcGrawModel*>(&model) != nullptr)
+        return pick(Tag<TuringMcGrawModel::Cell>());
+    if (dynamic_cast<const WitkinKassModel*>(&model) != nullptr)
+        return pick(Tag<WitkinKassModel::Cell>());
+    if (dynamic_cast<const MeinhardtStripesModel*>(&model) != nullptr)
+        return pick(Tag<MeinhardtStripesModel::Cell>());
+    if (dynamic_cast<const WitkinKassMd2*>(&model) != nullptr)
+        return pick(Tag<WitkinKassMd2::Cell>());
+    if (dynamic_cast<const WitkinKassMd3*>(&model) != nullptr)
+        return pick(Tag<WitkinKassMd3::Cell>());
+    if (dynamic_cast<const WitkinKassMd5*>(&model) != nullptr)
+        return pick(Tag<WitkinKassMd5::Cell>());
+    if (dynamic_cast<const WitkinKassDa2*>(&model) != nullptr)
+        return pick(Tag<WitkinKassDa2::Cell>());
+    if (dynamic_cast<const WitkinKassDa3*>(&model) != nullptr)
+        return pick(Tag<WitkinKassDa3::Cell>());
+    if (dynamic_cast<const WitkinKassDa5*>(&model) != nullptr)
+        return pick(Tag<WitkinKassDa5::Cell>());
+    return nullptr;
+}
+
+// Beyond four chemicals stepRows' per-cell arrays stop vectorising (GCC keeps
+// them in memory), and the generic path's separate row passes win; see
+// fusedExplicitStep.
+constexpr int kMaxFusedChemicals = 4;
+
+template <class Cell, class Term> StepRowsKernel explicitIf(const StepConstants& k) {
+    assert(Cell::kChemicals == k.chemicals);
+    if constexpr (Cell::kChemicals > kMaxFusedChemicals) {
+        return nullptr;
+    } else {
+        for (int c = 0; c < Cell::kChemicals; ++c)
+            if (Term(k, c).isZero() == Cell::diffuses(c))
+                return nullptr;
+        return &stepRows<Cell, Term>;
+    }
+}
+
+} // namespace
+
+StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants& k) {
+    if (k.hasParamMaps())
+        return nullptr;
+    return withCell(model, [&](auto tag) -> StepRowsKernel {
+        using Cell = typename decltype(tag)::Type;
+        switch (k.op.form) {
+        case DiffusionOperator::Form::Laplacian5:
+            return explicitIf<Cell, LaplacianTerm<Stencil::FivePoint>>(k);
+        case DiffusionOperator::Form::Laplacian9:
+            return explicitIf<Cell, LaplacianTerm<Stencil::NinePoint>>(k);
+        case DiffusionOperator::Form::Kernel3:
+            return explicitIf<Cell, KernelTerm<1>>(k);
+        case DiffusionOperator::Form::Kernel5:
+            return explicitIf<Cell, KernelTerm<2>>(k);
+        case DiffusionOperator::Form::TensorMap:
+            break;
+        }
+        return nullptr;
+    });
+}
+
+StepRowsKernel fusedRhsPass(const ReactionModel& model, const StepConstants& k) {
+    if (k.hasParamMaps())
+        return nullptr;
+    return withCell(model, [](auto tag) -> StepRowsKernel {
+        using Cell = typename decltype(tag)::Type;
+        if constexpr (Cell::kChemicals > kMaxFusedChemicals)
+            return nullptr;
+        else
+            return &rhsRows<Cell>;
+    });
+}
+
+RelaxRowsKernel fusedRelaxation(const StepConstants& k) {
+    // The sweep reads no reaction parameter, and fromSession refuses mapped
+    // diffusion rates with the semi-implicit integrator: param maps are fine.
+    switch (k.op.form) {
+    case DiffusionOperator::Form::Laplacian5:
+        return &relaxRows<LaplacianTerm<Stencil::FivePoint>>;
+    case DiffusionOperator::Form::Laplacian9:
+        return &relaxRows<LaplacianTerm<Stencil::NinePoint>>;
+    case DiffusionOperator::Form::Kernel3:
+        return &relaxRows<KernelTerm<1>>;
+    case DiffusionOperator::Form::Kernel5:
+        return &relaxRows<KernelTerm<2>>;
+    case DiffusionOperator::Form::TensorMap:
+        break;
+    }
+    return nullptr;
+}
+
+} // namespace morphogen

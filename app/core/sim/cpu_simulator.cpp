@@ -1,0 +1,372 @@
+#include "core/sim/cpu_simulator.hpp"
+
+#include "core/base/errors.hpp"
+
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdint>
+
+#include <omp.h>
+
+#include "core/sim/cpu_kernels.hpp"
+
+namespace morphogen {
+
+namespace {
+
+// Below ~64k cells a step takes microseconds and the fork/join barrier
+// would dominate (and spin-waits thrash when processes share the cores).
+bool threaded(const State& state) {
+    return state.cellCount() >= 65536;
+}
+
+// Denormals: Gray-Scott's background v decays through the denormal range,
+// where every arithmetic op is ~100x slower on x86 (a quarter of the cells at
+// 1024^2; flushing measured 1300 -> 2000 it/s there). Flushing them to zero
+// changes values below 1e-38 only. MXCSR is per thread, so each parallel
+// region sets it for its own threads.
+class FlushDenormals {
+public:
+#if defined(__SSE2__)
+    FlushDenormals() : m_saved(_mm_getcsr()) {
+        _mm_setcsr(m_saved | 0x8040u);
+    }
+    ~FlushDenormals() {
+        _mm_setcsr(m_saved);
+    }
+
+private:
+    unsigned m_saved;
+#endif
+};
+
+// Runs band(y0, y1) on one contiguous band of rows per thread, as
+// schedule(static) would split them, with one kernel call per band rather
+// than per row.
+template <class Band> void forEachBand(const State& state, const Band& band) {
+    const int h = state.height();
+#pragma omp parallel if (threaded(state))
+    {
+        const FlushDenormals flush;
+        const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+        band(int(std::int64_t(h) * t / threads), int(std::int64_t(h) * (t + 1) / threads));
+    }
+}
+
+// --- Generic path ----------------------------------------------------------------
+
+// lap of one row. up/down are the neighbouring rows (already wrapped or
+// clamped); columns 0 and w-1 wrap or clamp by the edge mode.
+void laplacianRow(const float* up, const float* row, const float* down, float* out, int w,
+                  EdgeMode edges, Stencil stencil) {
+    auto at = [&](const float* r, int x) { return r[GridDomain::wrapOrClamp(x, w, edges)]; };
+    auto edgeCell = [&](int x) {
+        if (stencil == Stencil::FivePoint)
+            return at(row, x - 1) + at(row, x + 1) + up[x] + down[x] - 4.0f * row[x];
+        const float sides = at(row, x - 1) + at(row, x + 1) + up[x] + down[x];
+        const float corners = at(up, x - 1) + at(up, x + 1) + at(down, x - 1) + at(down, x + 1);
+        return (4.0f * sides + corners - 20.0f * row[x]) * (1.0f / 6.0f);
+    };
+    out[0] = edgeCell(0);
+    if (w > 1)
+        out[w - 1] = edgeCell(w - 1);
+    if (stencil == Stencil::FivePoint) {
+#pragma omp simd
+        for (int x = 1; x < w - 1; ++x)
+            out[x] = row[x - 1] + row[x + 1] + up[x] + down[x] - 4.0f * row[x];
+    } else {
+#pragma omp simd
+        for (int x = 1; x < w - 1; ++x) {
+            const float sides = row[x - 1] + row[x + 1] + up[x] + down[x];
+            const float corners = up[x - 1] + up[x + 1] + down[x - 1] + down[x + 1];
+            out[x] = (4.0f * sides + corners - 20.0f * row[x]) * (1.0f / 6.0f);
+        }
+    }
+}
+
+// Sum of a (3x3 or 5x5) kernel's taps over one row of one plane.
+void kernelRow(const Kernel5& kernel, int radius, const float* plane, int w, int h, int y,
+               EdgeMode edges, float* out) {
+    std::fill(out, out + w, 0.0f);
+    for (int dy = -radius; dy <= radius; ++dy) {
+        const float* row = plane + std::size_t(GridDomain::wrapOrClamp(y + dy, h, edges)) * w;
+        for (int dx = -radius; dx <= radius; ++dx) {
+            const float weight = float(kernel.at(dx, dy));
+            if (weight == 0.0f)
+                continue;
+            // Interior columns are unit-stride; the few edge columns wrap or clamp.
+            const int x0 = std::min(radius, w), x1 = std::max(x0, w - radius);
+#pragma omp simd
+            for (int x = x0; x < x1; ++x)
+                out[x] += weight * row[x + dx];
+            for (int x = 0; x < x0; ++x)
+                out[x] += weight * row[GridDomain::wrapOrClamp(x + dx, w, edges)];
+            for (int x = x1; x < w; ++x)
+                out[x] += weight * row[GridDomain::wrapOrClamp(x + dx, w, edges)];
+        }
+    }
+}
+
+// div(A(x) grad c) for one row with the tensor map, in the conservative form
+// glsl/step.frag uses (face-averaged fluxes), so mass is conserved.
+void tensorMapRow(const DiffusionOperator& op, int c, const float* plane, int w, int h, int y,
+                  EdgeMode edges, float* out) {
+    const std::array<float, 3>& k = op.mapCoefficients[std::size_t(c)];
+    const float* ms = op.map.plane(0);
+    const float* mc = op.map.plane(1);
+    const float* mss = op.map.plane(2);
+    auto index = [&](int x, int yy) {
+        return std::size_t(GridDomain::wrapOrClamp(yy, h, edges)) * w +
+               std::size_t(GridDomain::wrapOrClamp(x, w, edges));
+    };
+    auto axx = [&](std::size_t i) { return k[0] * ms[i] + k[1] * mc[i] - k[2] * mss[i]; };
+    auto ayy = [&](std::size_t i) { return k[0] * ms[i] - k[1] * mc[i] + k[2] * mss[i]; };
+    auto axy = [&](std::size_t i) { return -(k[1] * mss[i] + k[2] * mc[i]); };
+    for (int x = 0; x < w; ++x) {
+        const std::size_t ic = index(x, y), il = index(x - 1, y), ir = index(x + 1, y),
+                          id = index(x, y - 1), iu = index(x, y + 1);
+        const float cc = plane[ic], l = plane[il], r = plane[ir], d = plane[id], u = plane[iu];
+        const float ru = plane[index(x + 1, y + 1)], rd = plane[index(x + 1, y - 1)];
+        const float lu = plane[index(x - 1, y + 1)], ld = plane[index(x - 1, y - 1)];
+        const float xx =
+            0.5f * (axx(ic) + axx(ir)) * (r - cc) - 0.5f * (axx(ic) + axx(il)) * (cc - l);
+        const float yy =
+            0.5f * (ayy(ic) + ayy(iu)) * (u - cc) - 0.5f * (ayy(ic) + ayy(id)) * (cc - d);
+        const float xy = 0.25f * (axy(ir) * (ru - rd) - axy(il) * (lu - ld)) +
+                         0.25f * (axy(iu) * (ru - lu) - axy(id) * (rd - ld));
+        out[x] = xx + yy + xy;
+    }
+}
+
+} // namespace
+
+CpuSimulator::CpuSimulator(const Session& session)
+    : m_model(session.reactionModel()), m_k(StepConstants::fromSession(session)),
+      m_current(session.width, session.height, m_k.chemicals),
+      m_next(session.width, session.height, m_k.chemicals) {
+    // Its kernels wrap at the grid's edges, not at tile edges: sweeps run
+    // each tile on its own CPU simulator instead (sweep.hpp: runTile).
+    if (m_k.tiled())
+        throw InputError("the cpu backend runs sweep tiles one by one, not a batched session; "
+                         "use --backend gpu for a batched sweep session");
+    m_explicitStep = fusedExplicitStep(m_model, m_k);
+    m_rhsPass = fusedRhsPass(m_model, m_k);
+    m_relax = fusedRelaxation(m_k);
+}
+
+void CpuSimulator::setState(const State& state) {
+    assert(state.width() == m_current.width() && state.height() == m_current.height() &&
+           state.channels() == m_current.channels());
+    m_current = state;
+}
+
+void CpuSimulator::run(int steps) {
+    for (int i = 0; i < steps; ++i)
+        step();
+}
+
+void CpuSimulator::setFrozen(const std::vector<std::uint8_t>& frozen) {
+    assert(frozen.empty() || frozen.size() == m_current.cellCount());
+    // An index list: frozen cells are few, and the fused kernels stay untouched.
+    m_frozenCells.clear();
+    for (std::size_t i = 0; i < frozen.size(); ++i)
+        if (frozen[i])
+            m_frozenCells.push_back(std::uint32_t(i));
+}
+
+void CpuSimulator::restoreFrozen() {
+    for (int c = 0; c < m_k.chemicals; ++c) {
+        const float* from = m_current.plane(c);
+        float* to = m_next.plane(c);
+        for (std::uint32_t i : m_frozenCells)
+            to[i] = from[i];
+    }
+}
+
+void CpuSimulator::reactRow(RowView& view, int y, std::vector<float>& params) const {
+    if (!m_k.hasParamMaps()) {
+        m_model.react(view, m_k.params.data());
+        return;
+    }
+    // One cell at a time with that cell's parameters: slower, but param maps
+    // are for maps and sweeps, not for speed.
+    const std::size_t row = std::size_t(y) * std::size_t(view.n);
+    RowView cell;
+    cell.n = 1;
+    for (int x = 0; x < view.n; ++x) {
+        for (std::size_t m = 0; m < m_k.mappedParams.size(); ++m)
+            params[std::size_t(m_k.mappedParams[m])] = m_k.paramMaps.plane(int(m))[row + x];
+        for (int c = 0; c < m_k.chemicals; ++c) {
+            cell.c[c] = view.c[c] + x;
+            cell.dcdt[c] = view.dcdt[c] + x;
+        }
+        m_model.react(cell, params.data());
+    }
+}
+
+void CpuSimulator::step() {
+    if (m_k.integrator == Integrator::SemiImplicit) {
+        stepSemiImplicit();
+        return;
+    }
+    if (m_explicitStep == nullptr) {
+        stepGeneric();
+        return;
+    }
+    forEachBand(m_current, [&](int y0, int y1) { m_explicitStep(m_k, m_current, m_next, y0, y1); });
+    restoreFrozen();
+    std::swap(m_current, m_next);
+}
+
+void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) const {
+    const int w = m_current.width(), h = m_current.height();
+    const EdgeMode edges = m_k.domain.edges();
+    const DiffusionOperator& op = m_k.op;
+    switch (op.form) {
+    case DiffusionOperator::Form::Laplacian5:
+    case DiffusionOperator::Form::Laplacian9: {
+        const float d = op.rates[std::size_t(c)];
+        if (d == 0.0f) {
+            std::fill(out, out + w, 0.0f);
+            return;
+        }
+        laplacianRow(plane + std::size_t(GridDomain::wrapOrClamp(y - 1, h, edges)) * w,
+                     plane + std::size_t(y) * w,
+                     plane + std::size_t(GridDomain::wrapOrClamp(y + 1, h, edges)) * w, out, w,
+                     edges,
+                     op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
+                                                                    : Stencil::NinePoint);
+#pragma omp simd
+        for (int x = 0; x < w; ++x)
+            out[x] = d * out[x];
+        return;
+    }
+    case DiffusionOperator::Form::Kernel3:
+    case DiffusionOperator::Form::Kernel5:
+        kernelRow(op.kernels[std::size_t(c)], op.form == DiffusionOperator::Form::Kernel3 ? 1 : 2,
+                  plane, w, h, y, edges, out);
+        return;
+    case DiffusionOperator::Form::TensorMap:
+        tensorMapRow(op, c, plane, w, h, y, edges, out);
+        return;
+    }
+}
+
+// Three passes per row through row buffers: the diffusion term of every
+// chemical, the model's virtual react(), then the update and clamp.
+void CpuSimulator::stepGeneric() {
+    const int w = m_current.width(), h = m_current.height(), nc = m_k.chemicals;
+#pragma omp parallel if (threaded(m_current))
+    {
+        const FlushDenormals flush;
+        std::vector<float> scratch(std::size_t(w) * 2 * std::size_t(nc));
+        std::vector<float> params = m_k.params;
+        float* term[kMaxChemicals];
+        RowView view;
+        view.n = w;
+        for (int c = 0; c < nc; ++c) {
+            term[c] = scratch.data() + std::size_t(c) * w;
+            view.dcdt[c] = scratch.data() + std::size_t(nc + c) * w;
+        }
+#pragma omp for schedule(static)
+        for (int y = 0; y < h; ++y) {
+            for (int c = 0; c < nc; ++c) {
+                const float* plane = m_current.plane(c);
+                view.c[c] = plane + std::size_t(y) * w;
+                diffusionRow(c, plane, y, term[c]);
+                // A mapped rate: the operator was compiled at rate 1.
+                if (const int m = m_k.mappedRate[std::size_t(c)]; m >= 0) {
+                    const float* rate = m_k.paramMaps.plane(m) + std::size_t(y) * w;
+                    for (int x = 0; x < w; ++x)
+                        term[c][x] = rate[x] * term[c][x];
+                }
+            }
+            reactRow(view, y, params);
+            for (int c = 0; c < nc; ++c) {
+                const float* cur = view.c[c];
+                const float* r = view.dcdt[c];
+                const float* t = term[c];
+                float* out = m_next.plane(c) + std::size_t(y) * w;
+                const float dt = m_k.dt;
+                const float lo = m_k.clampMin[c], hi = m_k.clampMax[c];
+#pragma omp simd
+                for (int x = 0; x < w; ++x)
+                    out[x] = std::min(std::max(cur[x] + dt * (r[x] + t[x]), lo), hi);
+            }
+        }
+    }
+    restoreFrozen();
+    std::swap(m_current, m_next);
+}
+
+void CpuSimulator::stepSemiImplicit() {
+    const int w = m_current.width(), h = m_current.height();
+    if (m_rhs.cellCount() == 0)
+        m_rhs = State(w, h, m_k.chemicals);
+    if (m_rhsPass != nullptr)
+        forEachBand(m_current, [&](int y0, int y1) { m_rhsPass(m_k, m_current, m_rhs, y0, y1); });
+    else
+        rhsGeneric();
+    // fromSession refuses the tensor map here, so every operator has a sweep.
+    assert(m_relax != nullptr);
+    // Relaxation passes from x0 = c: each reads m_current, writes m_next.
+    for (int sweep = 0; sweep < m_k.relaxationPasses; ++sweep) {
+        forEachBand(m_current,
+                    [&](int y0, int y1) { m_relax(m_k, m_current, m_rhs, m_next, y0, y1); });
+        restoreFrozen(); // the iterate starts at c, so frozen cells keep c exactly
+        std::swap(m_current, m_next);
+    }
+}
+
+void CpuSimulator::rhsGeneric() {
+    const int w = m_current.width(), h = m_current.height(), nc = m_k.chemicals;
+    const float dt = m_k.dt;
+#pragma omp parallel if (threaded(m_current))
+    {
+        const FlushDenormals flush;
+        std::vector<float> scratch(std::size_t(w) * std::size_t(nc));
+        std::vector<float> params = m_k.params;
+        RowView view;
+        view.n = w;
+        for (int c = 0; c < nc; ++c)
+            view.dcdt[c] = scratch.data() + std::size_t(c) * w;
+#pragma omp for schedule(static)
+        for (int y = 0; y < h; ++y) {
+            for (int c = 0; c < nc; ++c)
+                view.c[c] = m_current.plane(c) + std::size_t(y) * w;
+            reactRow(view, y, params);
+            for (int c = 0; c < nc; ++c) {
+                float* rhs = m_rhs.plane(c) + std::size_t(y) * w;
+#pragma omp simd
+                for (int x = 0; x < w; ++x)
+                    rhs[x] = view.c[c][x] + dt * view.dcdt[c][x];
+            }
+        }
+    }
+}
+
+double CpuSimulator::lastSolveResidual() const {
+    if (m_k.integrator != Integrator::SemiImplicit || m_rhs.cellCount() == 0)
+        return 0.0;
+    const int w = m_current.width(), h = m_current.height();
+    std::vector<float> term(static_cast<std::size_t>(w));
+    double worst = 0;
+    for (int c = 0; c < m_k.chemicals; ++c)
+        for (int y = 0; y < h; ++y) {
+            diffusionRow(c, m_current.plane(c), y, term.data());
+            const float* x = m_current.plane(c) + std::size_t(y) * w;
+            const float* rhs = m_rhs.plane(c) + std::size_t(y) * w;
+            for (int i = 0; i < w; ++i)
+                worst =
+                    std::max(worst, std::fabs(double(x[i]) - m_k.dt * double(term[std::size_t(i)]) -
+                                              double(rhs[i])));
+        }
+    return worst;
+}
+
+} // namespace morphogen

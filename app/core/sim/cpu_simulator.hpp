@@ -1,0 +1,53 @@
+#pragma once
+
+#include "core/sim/cpu_kernels.hpp"
+#include "core/sim/simulator.hpp"
+
+namespace morphogen {
+
+// The CPU reference backend: the oracle for the GPU path in tests and the
+// fallback for batch work where the only GL is a software rasterizer. Rows
+// are split across OpenMP threads. Built-in models on the homogeneous
+// operators step through the fused kernels of cpu_kernels.hpp; other models,
+// the tensor map and runs with a zero diffusion rate take a generic path
+// through ReactionModel::react() and row buffers.
+class CpuSimulator : public Simulator {
+public:
+    explicit CpuSimulator(const Session& session);
+
+    std::string backendName() const override { return "cpu"; }
+    void setState(const State& state) override;
+    State state() const override { return m_current; }
+    void run(int steps) override;
+    void setFrozen(const std::vector<std::uint8_t>& frozen) override;
+
+    // Semi-implicit runs: max over cells of |(I - dt A) c' - (c + dt f(c))|
+    // for the last step, i.e. how far the relaxation passes left the solve.
+    double lastSolveResidual() const;
+
+private:
+    void step();
+    void stepGeneric();
+    void stepSemiImplicit();
+    void rhsGeneric(); // m_rhs = c + dt f(c) through ReactionModel::react()
+    // dc/dt of the reaction for one row into view.dcdt; per cell when
+    // parameters vary per cell (param maps), else one call for the row.
+    void reactRow(RowView& view, int y, std::vector<float>& params) const;
+    // Frozen cells of m_next take their values from m_current.
+    void restoreFrozen();
+    // The diffusion term of chemical c on row y, rate included.
+    void diffusionRow(int c, const float* plane, int y, float* out) const;
+
+    const ReactionModel& m_model;
+    // Null where the generic path runs.
+    StepRowsKernel m_explicitStep = nullptr;
+    StepRowsKernel m_rhsPass = nullptr;
+    RelaxRowsKernel m_relax = nullptr;
+    StepConstants m_k;
+    State m_current;
+    State m_next;
+    State m_rhs;                              // SemiImplicit: c + dt f(c) of the step being solved
+    std::vector<std::uint32_t> m_frozenCells; // indices of frozen cells (cascades)
+};
+
+} // namespace morphogen

@@ -1,0 +1,76 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/operators/diffusion_operator.hpp"
+#include "core/session/session.hpp"
+#include "core/base/state.hpp"
+
+namespace morphogen {
+
+// -1 for every chemical: no diffusion rate comes from a param map.
+constexpr std::array<int, kMaxChemicals> noMappedRates() {
+    std::array<int, kMaxChemicals> rates{};
+    for (int& r : rates)
+        r = -1;
+    return rates;
+}
+
+// What one step needs, derived once from a session; both backends read the
+// same values so they share step semantics. Explicit Euler:
+//   c' = clamp(c + dt * (react(c) + A c), clampMin, clampMax)
+// Semi-implicit: relaxation passes on (I - dt A) c' = c + dt react(c),
+// starting from c, clamped after every sweep.
+struct StepConstants {
+    int chemicals = 0;
+    float dt = 1.0f;
+    std::array<float, kMaxChemicals> clampMin = {};
+    std::array<float, kMaxChemicals> clampMax = {};
+    std::vector<float> params; // model declaration order
+    GridDomain domain;
+    DiffusionOperator op;
+    Integrator integrator = Integrator::ExplicitEuler;
+    int relaxationPasses = 8;
+    // SemiImplicit: each chemical's Richardson weight (stability.hpp); a sweep is
+    //   x' = clamp(x + omega (rhs - x + dt A x)),  rhs = c + dt f(c).
+    std::array<float, kMaxChemicals> omega = {};
+    double contraction = 0; // worst chemical's residual factor per sweep
+
+    // Parameters that vary per cell (the session's param_maps), at most 4:
+    // their indices in `params` and one plane of values per cell each.
+    std::vector<int> mappedParams;
+    State paramMaps;
+    // Per chemical: the mapped parameter (index into mappedParams) that is its
+    // diffusion rate, or -1. The operator is then compiled at rate 1 and the
+    // backends multiply its result by the cell's rate.
+    std::array<int, kMaxChemicals> mappedRate = noMappedRates();
+
+    // Cells per tile when a param map is a Tiles field, else {0, 0}: the grid
+    // is then independent tiles, each periodic on its own (a batched sweep).
+    // Only the GPU step implements this; the CPU runs such tiles one by one.
+    std::array<int, 2> tile = {0, 0};
+
+    bool hasParamMaps() const { return !mappedParams.empty(); }
+    bool tiled() const { return tile[0] > 0; }
+
+    // Throws InputError for combinations the backends cannot run.
+    static StepConstants fromSession(const Session& session);
+};
+
+// One simulation backend. Runs steps without reading back; state() reads back.
+class Simulator {
+public:
+    virtual ~Simulator() = default;
+    virtual std::string backendName() const = 0;
+    virtual void setState(const State& state) = 0;
+    virtual State state() const = 0;
+    virtual void run(int steps) = 0;
+    // Cells marked 1 keep their values exactly (still feeding their
+    // neighbours' diffusion); empty: none. Turk's cascades.
+    virtual void setFrozen(const std::vector<std::uint8_t>& frozen) = 0;
+};
+
+} // namespace morphogen
