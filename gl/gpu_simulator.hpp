@@ -63,6 +63,11 @@ public:
     void run(int steps) override;
     void setFrozen(const std::vector<std::uint8_t>& frozen) override;
 
+    // The current state texture t (chemicals 4t..4t+3), for passes that read
+    // the state where it lives (display, brushes) instead of reading it back.
+    const Texture2D& stateTexture(int t) const { return m_pingPong.current(t); }
+    int stateTextureCount() const { return m_pingPong.count(); }
+
 private:
     // Compiles glsl/step.frag with the operator's variant plus `pass`, and
     // sets the uniforms every variant shares.
