@@ -341,9 +341,19 @@ void Atlas::validate(bool requireClosed) const {
         const TexelPos p = position(c);
         for (int d = 0; d < 4; ++d) {
             const AtlasStep s = step(c, direction(d));
+            if (m_neighbours[c][d] != s.cell)
+                throw std::invalid_argument("Atlas: the index array disagrees with the gluing "
+                                            "at texel (" +
+                                            std::to_string(p.u) + ", " + std::to_string(p.v) +
+                                            ") of tile " + std::to_string(p.tile) + ", " +
+                                            toString(direction(d)));
+            const bool outward = (d == 0 && p.u == m_tileSize - 1) ||
+                                 (d == 1 && p.v == m_tileSize - 1) || (d == 2 && p.u == 0) ||
+                                 (d == 3 && p.v == 0);
+            if (outward && !m_links[p.tile][d].glued)
+                continue; // zero flux: the step stays put
             const AtlasStep r = step(s.cell, s.back);
-            if (r.cell != c || index(r.back) != d || r.mirrored != s.mirrored ||
-                m_neighbours[c][d] != s.cell)
+            if (r.cell != c || index(r.back) != d || r.mirrored != s.mirrored)
                 throw std::invalid_argument("Atlas: stepping " + toString(direction(d)) +
                                             " from texel (" + std::to_string(p.u) + ", " +
                                             std::to_string(p.v) + ") of tile " +
@@ -397,13 +407,19 @@ Atlas Atlas::cube(int tileSize) {
 
 namespace {
 
-// The D4 element of rotatedTiles' tile t acting on a point of the tile square [0, s]^2
-// (s = n for corners, s = n-1 for texel indices): mirror u -> s-u first when t mod 8 >= 4,
-// then rotate (t mod 4) quarter turns counter-clockwise.
+// The D4 element rotatedTiles stores tile t with: e mod 4 quarter turns, mirrored when e >= 4.
+// Tiles 0..7 take the eight elements; tile 8 is turned like tile 2, which puts two tiles
+// turned the same way next to each other (tiles 2 and 8 are neighbours across the wrap) so
+// that a plain, unrotated gluing occurs too.
+constexpr int kRotatedTileElement[9] = {0, 1, 2, 3, 4, 5, 6, 7, 2};
+
+// That element acting on a point of the tile square [0, s]^2 (s = n for corners, s = n-1 for
+// texel indices): mirror x -> s-x first when e >= 4, then quarter turns counter-clockwise.
 std::pair<int, int> rotatedTileTransform(int t, int s, int x, int y) {
-    if (t % 8 >= 4)
+    const int e = kRotatedTileElement[t];
+    if (e >= 4)
         x = s - x;
-    for (int k = 0; k < t % 4; ++k) {
+    for (int k = 0; k < e % 4; ++k) {
         const int nx = s - y;
         y = x;
         x = nx;

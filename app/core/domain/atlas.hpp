@@ -167,12 +167,13 @@ public:
     //   0: +x {1,3,7,5}  1: -x {0,4,6,2}  2: +y {2,6,7,3}
     //   3: -y {0,1,5,4}  4: +z {4,5,7,6}  5: -z {0,2,3,1}
     static Atlas cube(int tileSize);
-    // A 3 x 3 periodic plane of tiles (a torus, every corner valence 4), each tile t stored in
-    // the atlas turned by the element t mod 8 of D4: rotated by (t mod 4) * 90 degrees
-    // counter-clockwise, after a mirror u -> n-1-u when t mod 8 >= 4. Its gluings have every
-    // relative rotation (0, 90, 180, 270 degrees) in both orientations (plain and mirrored).
-    // Simulations on it equal those on a periodic grid of 3n x 3n cells, texel for texel
-    // through rotatedTilesPlaneCells.
+    // A 3 x 3 periodic plane of tiles (a torus, every corner valence 4), tile t = (t mod 3,
+    // t / 3) of the plane stored in the atlas turned by an element e of D4: rotated by
+    // (e mod 4) * 90 degrees counter-clockwise, after a mirror u -> n-1-u when e >= 4, with
+    // e = t for tiles 0..7 and e = 2 for tile 8. Its gluings have every relative rotation (0,
+    // 90, 180, 270 degrees) in both orientations (plain and mirrored). Simulations on it equal
+    // those on a periodic grid of 3n x 3n cells, texel for texel through
+    // rotatedTilesPlaneCells.
     static Atlas rotatedTiles(int tileSize);
     // For each cell of rotatedTiles(tileSize), the cell (y * 3n + x) of the 3n x 3n periodic
     // grid it stands for (UINT32_MAX for unused cells; rotatedTiles has none).
