@@ -115,18 +115,11 @@ std::pair<Direction, Direction> towardsCorner(int corner) {
     }
 }
 
-std::uint32_t cornerTexel(const Atlas& atlas, int tile, int corner) {
-    const int n = atlas.tileSize() - 1;
-    const int u[4] = {0, n, n, 0}, v[4] = {0, 0, n, n};
-    return atlas.tileCell(tile, u[corner], v[corner]);
-}
-
 bool isCornerStep(const Atlas& atlas, std::uint32_t c, Direction d1, Direction d2) {
     for (int t = 0; t < atlas.tileCount(); ++t)
         for (int corner = 0; corner < 4; ++corner) {
             const auto [a, b] = towardsCorner(corner);
-            if (cornerTexel(atlas, t, corner) == c &&
-                ((a == d1 && b == d2) || (a == d2 && b == d1)))
+            if (atlas.cornerCell(t, corner) == c && ((a == d1 && b == d2) || (a == d2 && b == d1)))
                 return true;
         }
     return false;
@@ -145,6 +138,10 @@ TEST(Atlas, LayoutOfTilesInTheTexture) {
     EXPECT_EQ(atlas.tileOf(atlas.cellAt(8, 4)), -1);
     EXPECT_FALSE(atlas.used(atlas.cellAt(11, 7)));
     EXPECT_EQ(atlas.tileCell(4, 1, 2), atlas.cellAt(5, 6));
+    EXPECT_EQ(atlas.cornerCell(1, 0), atlas.cellAt(4, 0));
+    EXPECT_EQ(atlas.cornerCell(1, 1), atlas.cellAt(7, 0));
+    EXPECT_EQ(atlas.cornerCell(1, 2), atlas.cellAt(7, 3));
+    EXPECT_EQ(atlas.cornerCell(1, 3), atlas.cellAt(4, 3));
     EXPECT_EQ(Atlas(3, 4).tilesPerRow(), 2);
     EXPECT_EQ(Atlas(3, 10, 7).width(), 21);
     EXPECT_EQ(Atlas(3, 10, 7).height(), 6);
@@ -246,6 +243,14 @@ TEST(Atlas, MoebiusStripAndCylinderMatchIndexArithmetic) {
         EXPECT_EQ(straightLoopLength(atlas, start, Direction::PlusX, 100), moebius ? 2 * w : w);
         const AtlasStep seam = atlas.step(atlas.cellAt(w - 1, 0), Direction::PlusX);
         EXPECT_EQ(seam.mirrored, moebius);
+        // The walk carries the flipped frame on across later (plain) edges: once round, the
+        // start's +y points down the stored tiles; twice round, up again.
+        std::vector<Direction> once(std::size_t(w + 1), Direction::PlusX);
+        once.back() = Direction::PlusY;
+        EXPECT_EQ(atlas.walk(start, once), atlas.cellAt(1, moebius ? n - 2 : 1));
+        std::vector<Direction> twice(std::size_t(2 * w + 1), Direction::PlusX);
+        twice.back() = Direction::PlusY;
+        EXPECT_EQ(atlas.walk(start, twice), atlas.cellAt(1, 1));
     }
 }
 
@@ -391,6 +396,20 @@ TEST(Atlas, RotatedTilesAreAPeriodicPlaneStoredTurned) {
             }
         }
         EXPECT_EQ(covered.size(), std::size_t(side * side));
+
+        // Long walks across many edges of every kind carry the frame like the plane does.
+        std::uint32_t seed = 12345;
+        for (std::uint32_t c = 0; c < atlas.cellCount(); c += 5) {
+            std::vector<Direction> path;
+            auto p = toPlane(c);
+            for (int k = 0; k < 8 * n; ++k) {
+                seed = seed * 1664525u + 1013904223u;
+                const int d = int(seed >> 30);
+                path.push_back(dir(d));
+                p = planeStep(p, planeDirection(atlas.tileOf(c), d));
+            }
+            EXPECT_EQ(toPlane(atlas.walk(c, path)), p) << "n " << n << " cell " << c;
+        }
     }
 }
 
@@ -413,7 +432,7 @@ TEST(Atlas, DiagonalAtAValenceThreeCornerReachesTheDirectNeighbours) {
     const Atlas cube = Atlas::cube(3);
     for (int t = 0; t < 6; ++t)
         for (int corner = 0; corner < 4; ++corner) {
-            const std::uint32_t c = cornerTexel(cube, t, corner);
+            const std::uint32_t c = cube.cornerCell(t, corner);
             const auto [x, y] = towardsCorner(corner);
             const std::uint32_t nx = cube.step(c, x).cell, ny = cube.step(c, y).cell;
             // x-then-y reaches the third tile's corner texel: the direct y neighbour; and the
@@ -435,10 +454,10 @@ TEST(Atlas, DiagonalAtAValenceFiveCornerReachesTheTwoFarCornerTexels) {
         EXPECT_EQ(atlas.cornerValence(t, 1), 2);
         EXPECT_EQ(atlas.cornerValence(t, 2), 1);
         EXPECT_EQ(atlas.cornerValence(t, 3), 2);
-        centre.insert(cornerTexel(atlas, t, 0));
+        centre.insert(atlas.cornerCell(t, 0));
     }
     for (int t = 0; t < 5; ++t) {
-        const std::uint32_t c = cornerTexel(atlas, t, 0);
+        const std::uint32_t c = atlas.cornerCell(t, 0);
         const auto [x, y] = towardsCorner(0);
         const std::uint32_t nx = atlas.step(c, x).cell, ny = atlas.step(c, y).cell;
         const std::uint32_t xy = atlas.walk(c, {x, y}), yx = atlas.walk(c, {y, x});

@@ -211,6 +211,16 @@ std::uint32_t Atlas::edgeCell(int tile, TileEdge e, int i) const {
     return tileCell(tile, u, v);
 }
 
+std::uint32_t Atlas::cornerCell(int tile, int corner) const {
+    checkTile(tile, "cornerCell");
+    if (corner < 0 || corner > 3)
+        throw std::invalid_argument("Atlas::cornerCell: corner " + std::to_string(corner) +
+                                    " is out of range (0..3)");
+    const int n = m_tileSize - 1;
+    const int u[4] = {0, n, n, 0}, v[4] = {0, 0, n, n};
+    return tileCell(tile, u[corner], v[corner]);
+}
+
 const AtlasLink& Atlas::link(int tile, TileEdge e) const {
     checkTile(tile, "link");
     return m_links[tile][index(e)];

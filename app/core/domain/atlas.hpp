@@ -102,6 +102,8 @@ public:
     std::uint32_t tileCell(int tile, int u, int v) const;
     // The cell of texel i (counted as in the class comment) along edge e of a tile.
     std::uint32_t edgeCell(int tile, TileEdge e, int i) const;
+    // The texel of a tile at one of its corners (0..3 counter-clockwise from (0, 0)).
+    std::uint32_t cornerCell(int tile, int corner) const;
     // What edge e of a tile is glued to.
     const AtlasLink& link(int tile, TileEdge e) const;
 
