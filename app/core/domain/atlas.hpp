@@ -122,15 +122,17 @@ public:
     // Where the two orders agree: wherever the 2 x 2 block of texels the two steps span lies
     // around a tile-corner vertex of valence 4, or around no tile corner at all (inside a tile
     // or across one edge), {PlusX, PlusY} and {PlusY, PlusX} reach the same texel.
-    // Where they differ: only from a tile's corner texel, towards its corner vertex, when that
-    // vertex has valence k != 4 (k tiles meet there). Going round the vertex the tiles are
-    // a, b (across a's edge in the first direction), ..., c (across a's edge in the second):
-    //   valence 3 (a, b, c): x-then-y reaches c's corner texel, which is a's direct +y
-    //     neighbour; y-then-x reaches b's corner texel, a's direct +x neighbour. The orders
+    // Where they differ: only from a tile's corner texel, with both directions pointing
+    // towards its corner vertex (x, y below; any of the four corners), when that vertex has
+    // valence k != 4 (k tiles meet there). Going round the vertex the tiles are a (ours),
+    // b (across a's edge in direction x), ..., c (across a's edge in direction y):
+    //   valence 3 (a, b, c): x-then-y reaches c's corner texel, which is a's direct y
+    //     neighbour; y-then-x reaches b's corner texel, a's direct x neighbour. The orders
     //     differ, and neither reaches a texel that is not already a direct neighbour.
     //   valence 5 (a, b, p, q, c): x-then-y reaches p's corner texel, y-then-x q's. The two
     //     differ, and both are corner texels at the vertex that are not direct neighbours.
-    // (Checked by tests on the cube and on a 5-tile fan, for every corner texel.)
+    // (Checked by tests on the cube and on a 5-tile fan, for every corner texel.) On an open
+    // atlas a step into an unglued edge stays put, so a diagonal there may end next to c.
     std::uint32_t walk(std::uint32_t cell, std::initializer_list<Direction> path) const;
     std::uint32_t walk(std::uint32_t cell, const std::vector<Direction>& path) const;
 
