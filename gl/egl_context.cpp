@@ -8,6 +8,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -45,13 +46,22 @@ std::string eglErrorName(EGLint error) {
     }
 }
 
+// Displays that hold a live EglContext, with their context counts: a later
+// search must not terminate them (EGL hands out the same display handle again,
+// and eglTerminate would pull it from under the earlier context).
+std::map<EGLDisplay, int> g_liveDisplays;
+
 class EglContext final : public Context {
 public:
     EglContext(EGLDisplay display, EGLContext context, std::string description)
-        : m_display(display), m_context(context), m_description(std::move(description)) {}
+        : m_display(display), m_context(context), m_description(std::move(description)) {
+        ++g_liveDisplays[m_display];
+    }
     ~EglContext() override {
         eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(m_display, m_context);
+        if (--g_liveDisplays[m_display] == 0)
+            g_liveDisplays.erase(m_display);
     }
     EglContext(const EglContext&) = delete;
     EglContext& operator=(const EglContext&) = delete;
@@ -218,7 +228,8 @@ std::unique_ptr<Context> createEglContext(const std::optional<DeviceRequest>& re
                 continue;
             if (contexts[i] != EGL_NO_CONTEXT)
                 eglDestroyContext(displays[i].display, contexts[i]);
-            eglTerminate(displays[i].display);
+            if (g_liveDisplays.count(displays[i].display) == 0)
+                eglTerminate(displays[i].display);
         }
     };
     DisplayChoice choice;
