@@ -164,8 +164,11 @@ EGLContext createOn(EGLDisplay display) {
     if (!eglBindAPI(EGL_OPENGL_API))
         throw std::runtime_error("no desktop OpenGL API");
     // Surfaceless rendering into FBOs needs no config where EGL_KHR_no_config_context exists.
+    // Elsewhere ask for a pbuffer-capable config: EGL_SURFACE_TYPE defaults to
+    // EGL_WINDOW_BIT, which a device display (no window system) never offers.
     EGLConfig config = nullptr;
-    const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
+                                    EGL_OPENGL_BIT, EGL_NONE};
     EGLint configCount = 0;
     if (!hasExtension(eglQueryString(display, EGL_EXTENSIONS), "EGL_KHR_no_config_context") &&
         (!eglChooseConfig(display, configAttribs, &config, 1, &configCount) || configCount == 0))
