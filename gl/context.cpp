@@ -6,7 +6,9 @@
 
 #include <glad/gl.h>
 
+#include "core/base/errors.hpp"
 #include "gl/gl_checks.hpp"
+#include "gl/glfw_context.hpp"
 
 namespace morphogen::gl {
 
@@ -37,24 +39,26 @@ std::string Context::renderer() const {
     return s ? reinterpret_cast<const char*>(s) : "unknown";
 }
 
+std::string Context::vendor() const {
+    const GLubyte* s = glGetString(GL_VENDOR);
+    return s ? reinterpret_cast<const char*>(s) : "unknown";
+}
+
 std::string Context::version() const {
     const GLubyte* s = glGetString(GL_VERSION);
     return s ? reinterpret_cast<const char*>(s) : "unknown";
 }
 
 bool Context::isSoftwareRenderer() const {
-    const std::string r = renderer();
-    for (const char* name : {"llvmpipe", "softpipe", "swrast"})
-        if (r.find(name) != std::string::npos)
-            return true;
-    return false;
+    return isSoftwareRendererName(renderer());
 }
 
 namespace {
-std::unique_ptr<Context> createOne(ContextKind kind) {
+
+std::unique_ptr<Context> createOne(ContextKind kind, const std::optional<DeviceRequest>& device) {
     switch (kind) {
     case ContextKind::Egl:
-        return createEglContext();
+        return createEglContext(device);
     case ContextKind::OsMesa:
         return createOsMesaContext();
     case ContextKind::Glfw:
@@ -62,9 +66,11 @@ std::unique_ptr<Context> createOne(ContextKind kind) {
     }
     return nullptr;
 }
+
 } // namespace
 
-std::unique_ptr<Context> createHeadlessContext(std::optional<ContextKind> requested) {
+std::unique_ptr<Context> createHeadlessContext(std::optional<ContextKind> requested,
+                                               std::optional<int> gpuDevice) {
     if (!requested) {
         if (const char* env = std::getenv(kContextEnvVar); env && *env) {
             requested = parseContextKind(env);
@@ -73,15 +79,29 @@ std::unique_ptr<Context> createHeadlessContext(std::optional<ContextKind> reques
                                          "' is not a context kind (accepted: egl, osmesa, glfw)");
         }
     }
+    std::optional<DeviceRequest> device;
+    if (gpuDevice) {
+        if (requested && *requested != ContextKind::Egl)
+            throw InputError("--gpu-device picks an EGL display; it does not apply to the " +
+                             toString(*requested) + " context (use --context egl or leave it out)");
+        device = DeviceRequest{*gpuDevice, "--gpu-device"};
+    } else if (const char* env = std::getenv(kGpuDeviceEnvVar);
+               env && *env && (!requested || *requested == ContextKind::Egl)) {
+        device = DeviceRequest{parseGpuDevice(env, kGpuDeviceEnvVar), kGpuDeviceEnvVar};
+    }
+    // A requested display means EGL only: falling back to OSMesa would ignore it.
     const std::vector<ContextKind> order =
         requested ? std::vector<ContextKind>{*requested}
+        : device  ? std::vector<ContextKind>{ContextKind::Egl}
                   : std::vector<ContextKind>{ContextKind::Egl, ContextKind::OsMesa};
     std::string failures;
     for (ContextKind kind : order) {
         try {
-            auto context = createOne(kind);
+            auto context = createOne(kind, device);
             verifyFloatRenderTargets();
             return context;
+        } catch (const InputError&) {
+            throw;
         } catch (const std::exception& e) {
             failures += "\n  " + toString(kind) + ": " + e.what();
         }

@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "gl/context.hpp"
 #include "gl/gl_loader.hpp"
+#include "gl/glfw_context.hpp"
 
 namespace morphogen::gl {
 
@@ -19,27 +19,51 @@ std::string lastGlfwError() {
     return description ? description : "unknown GLFW error";
 }
 
-class GlfwContext final : public Context {
-public:
-    explicit GlfwContext(GLFWwindow* window) : m_window(window) {}
-    ~GlfwContext() override {
-        glfwDestroyWindow(m_window);
-        glfwTerminate();
-    }
-    GlfwContext(const GlfwContext&) = delete;
-    GlfwContext& operator=(const GlfwContext&) = delete;
-
-    ContextKind kind() const override { return ContextKind::Glfw; }
-    void makeCurrent() override { glfwMakeContextCurrent(m_window); }
-
-private:
-    GLFWwindow* m_window;
-};
+// Windows alive: glfwTerminate would destroy every one of them, so it waits
+// for the last.
+int g_liveWindows = 0;
 
 } // namespace
 
-std::unique_ptr<Context> createGlfwContext(int width, int height, const std::string& title,
-                                           bool visible) {
+GlfwContext::GlfwContext(GLFWwindow* window) : m_window(window) {
+    ++g_liveWindows;
+}
+
+GlfwContext::~GlfwContext() {
+    glfwDestroyWindow(m_window);
+    if (--g_liveWindows == 0)
+        glfwTerminate();
+}
+
+void GlfwContext::makeCurrent() {
+    glfwMakeContextCurrent(m_window);
+}
+
+void GlfwContext::swapBuffers() {
+    glfwSwapBuffers(m_window);
+}
+
+void GlfwContext::setSwapInterval(int interval) {
+    makeCurrent();
+    glfwSwapInterval(interval);
+}
+
+bool GlfwContext::shouldClose() const {
+    return glfwWindowShouldClose(m_window) != 0;
+}
+
+void GlfwContext::setShouldClose(bool close) {
+    glfwSetWindowShouldClose(m_window, close ? GLFW_TRUE : GLFW_FALSE);
+}
+
+std::pair<int, int> GlfwContext::framebufferSize() const {
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(m_window, &width, &height);
+    return {width, height};
+}
+
+std::unique_ptr<GlfwContext> createGlfwContext(int width, int height, const std::string& title,
+                                               bool visible) {
     if (!glfwInit())
         throw std::runtime_error("GLFW: glfwInit failed: " + lastGlfwError() +
                                  " (is a display available?)");
@@ -51,7 +75,8 @@ std::unique_ptr<Context> createGlfwContext(int width, int height, const std::str
     GLFWwindow* window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!window) {
         const std::string why = lastGlfwError();
-        glfwTerminate();
+        if (g_liveWindows == 0)
+            glfwTerminate();
         throw std::runtime_error("GLFW: cannot create a 3.3 core window: " + why);
     }
     auto context = std::make_unique<GlfwContext>(window);

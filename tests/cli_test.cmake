@@ -44,6 +44,20 @@ run(2 "is not a parameter of gray_scott" render --preset gs_coral --param Q=1 --
 run(2 "--size 'big'" render --preset gs_coral --size big --out a.png)
 run(2 "--backend 'fpga'" render --preset gs_coral --size 16 --steps 1 --backend fpga --out a.png)
 run(2 "--context 'dx12'" render --preset gs_coral --size 16 --steps 1 --backend gpu --context dx12 --out a.png)
+# --gpu-device picks an EGL display; a bad one is an input error even for --backend auto,
+# which would otherwise fall back to the CPU and hide it.
+run(2 "--gpu-device 'first'" render --preset gs_coral --size 16 --steps 1 --gpu-device first --out a.png)
+run(2 "--gpu-device 99" render --preset gs_coral --size 16 --steps 1 --context egl --gpu-device 99 --out a.png)
+run(2 "does not apply to the osmesa context" render --preset gs_coral --size 16 --steps 1 --context osmesa --gpu-device 0 --out a.png)
+execute_process(COMMAND ${CMAKE_COMMAND} -E env MORPHOGEN_GPU_DEVICE=99 ${MORPHOGEN} render --preset gs_coral --size 16 --steps 1 --context egl --out a.png
+  RESULT_VARIABLE rc ERROR_VARIABLE err WORKING_DIRECTORY "${WORK}")
+string(FIND "${err}" "MORPHOGEN_GPU_DEVICE 99" at)
+if(NOT rc EQUAL 2 OR at EQUAL -1)
+  message(SEND_ERROR "MORPHOGEN_GPU_DEVICE=99: want exit 2 naming it, got exit ${rc}: ${err}")
+else()
+  message(STATUS "ok: MORPHOGEN_GPU_DEVICE=99 is refused")
+endif()
+run(0 "gpu backend (requested: egl " render --preset gs_coral --size 16 --steps 1 --backend gpu --context egl --gpu-device 0 --out gpu_device.png)
 run(2 "colour map 'rainbow'" render --preset gs_coral --size 16 --steps 1 --colormap rainbow --out a.png)
 run(2 "--levels '0.5:0.2' is not LOW:HIGH" render --preset gs_coral --size 16 --steps 1 --levels 0.5:0.2 --out a.png)
 run(2 "--preset and --session are exclusive" render --preset gs_coral --session x.json --out a.png)

@@ -20,6 +20,41 @@ TEST(GlContext, IsTheKindCtestAskedFor) {
     EXPECT_NO_THROW(gl::verifyFloatRenderTargets());
 }
 
+TEST(GlContext, EglNamesTheDisplayItChose) {
+    gl::Context& context = test::glContext();
+    if (context.kind() != gl::ContextKind::Egl)
+        GTEST_SKIP() << "an EGL test; this run's context is " << context.description();
+    EXPECT_EQ(context.description().rfind("egl ", 0), 0u) << context.description();
+    EXPECT_EQ(context.isSoftwareRenderer(), gl::isSoftwareRendererName(context.renderer()));
+}
+
+TEST(GlContext, AnotherEglDisplayLeavesTheFirstContextWorking) {
+    if (test::glContext().kind() != gl::ContextKind::Egl)
+        GTEST_SKIP() << "an EGL test";
+    // Every other display candidate in turn: choosing it must not terminate
+    // the display the first context lives on.
+    auto first = gl::createHeadlessContext(gl::ContextKind::Egl);
+    int others = 0;
+    for (int index = 0; index < 8; ++index) {
+        std::unique_ptr<gl::Context> other;
+        try {
+            other = gl::createHeadlessContext(gl::ContextKind::Egl, index);
+        } catch (const InputError& e) {
+            const std::string message = e.what();
+            if (message.find("out of range") != std::string::npos)
+                break;
+            continue; // a candidate that fails here
+        }
+        others += other->description() != first->description();
+        other.reset();
+        first->makeCurrent();
+        EXPECT_NO_THROW(gl::verifyFloatRenderTargets()) << "after " << index;
+    }
+    std::fprintf(stderr, "[gl] %d other EGL displays tried beside %s\n", others,
+                 first->description().c_str());
+    test::glContext();
+}
+
 TEST(GlContext, UnknownKindInTheEnvironmentIsNamed) {
     EXPECT_FALSE(gl::parseContextKind("vulkan"));
     EXPECT_EQ(gl::parseContextKind("osmesa"), gl::ContextKind::OsMesa);

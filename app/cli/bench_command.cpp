@@ -9,7 +9,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/backend.hpp"
 #include "cli/commands.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/base/errors.hpp"
@@ -17,6 +16,7 @@
 #include "core/analysis/pattern_stats.hpp"
 #include "core/numerics/resample.hpp"
 #include "core/session/session.hpp"
+#include "gl/backend.hpp"
 #include "gl/gpu_simulator.hpp"
 
 namespace morphogen::cli {
@@ -28,6 +28,7 @@ struct BenchFlags {
     std::string sizes = "256,512,1024";
     std::string preset = "gs_coral";
     std::string context;
+    std::string gpuDevice;
     double seconds = 1.0;
     bool noCpu = false;
     std::string operatorSizes = "512,1024";
@@ -160,10 +161,12 @@ void bench(const BenchFlags& f) {
 
     std::unique_ptr<gl::Context> context;
     try {
-        context = gl::createHeadlessContext(parseContextFlag(f.context));
+        context = gl::createHeadlessContext(gl::parseContextFlag(f.context),
+                                            gl::parseGpuDeviceFlag(f.gpuDevice));
         report["gl_renderer"] = context->renderer();
         report["gl_version"] = context->version();
         report["gl_context"] = gl::toString(context->kind());
+        report["gl_display"] = context->description();
     } catch (const InputError&) {
         throw;
     } catch (const std::exception& e) {
@@ -264,7 +267,9 @@ void bench(const BenchFlags& f) {
         const int n = f.convergenceSize;
         Session flat = loadPreset("turk_large_spots");
         flat.width = flat.height = n;
-        Backend backend = makeBackend(BackendChoice::Auto, parseContextFlag(f.context));
+        gl::Backend backend =
+            gl::makeBackend(gl::BackendChoice::Auto, gl::parseContextFlag(f.context),
+                            gl::parseGpuDeviceFlag(f.gpuDevice));
         std::fprintf(stderr, "bench: convergence on the %s\n", backend.reason.c_str());
         Session semi = flat;
         semi.integrator = Integrator::SemiImplicit;
@@ -318,6 +323,9 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--sizes", flags->sizes, "comma-separated grid sizes (default 256,512,1024)");
     cmd->add_option("--preset", flags->preset, "preset whose model is measured (default gs_coral)");
     cmd->add_option("--context", flags->context, "GL context: egl or osmesa");
+    cmd->add_option(
+        "--gpu-device", flags->gpuDevice,
+        "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
     cmd->add_option("--seconds", flags->seconds, "time per measurement (default 1)");
     cmd->add_flag("--no-cpu", flags->noCpu, "skip the CPU backend");
     cmd->add_option("--operator-sizes", flags->operatorSizes,

@@ -10,7 +10,6 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "cli/backend.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
@@ -18,6 +17,7 @@
 #include "core/io/image_io.hpp"
 #include "core/sim/runner.hpp"
 #include "core/session/session.hpp"
+#include "gl/backend.hpp"
 
 namespace morphogen::cli {
 
@@ -44,6 +44,7 @@ struct GalleryFlags {
     double stepsScale = 1.0;
     std::string backend = "auto";
     std::string context;
+    std::string gpuDevice;
     std::string only;
 };
 
@@ -267,11 +268,12 @@ void gallery(const GalleryFlags& f) {
     if (!(f.stepsScale > 0) || !std::isfinite(f.stepsScale))
         throw InputError("--steps-scale must be a positive number");
     std::vector<Session> presets = selectPresets(f.only);
-    const BackendChoice choice = parseBackendChoice(f.backend);
-    const auto contextKind = parseContextFlag(f.context);
+    const gl::BackendChoice choice = gl::parseBackendChoice(f.backend);
+    const auto contextKind = gl::parseContextFlag(f.context);
+    const auto gpuDevice = gl::parseGpuDeviceFlag(f.gpuDevice);
     prepareDir(f.dir);
 
-    Backend backend = makeBackend(choice, contextKind);
+    gl::Backend backend = gl::makeBackend(choice, contextKind, gpuDevice);
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
 
     g_galleryInterrupted.store(false);
@@ -359,6 +361,9 @@ void addGalleryCommand(CLI::App& app) {
     cmd->add_option(
         "--context", flags->context,
         "GL context: egl or osmesa (default: $MORPHOGEN_CONTEXT, else egl then osmesa)");
+    cmd->add_option(
+        "--gpu-device", flags->gpuDevice,
+        "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
     cmd->add_option("--only", flags->only, "comma-separated preset names (default: all)");
     cmd->callback([flags] { gallery(*flags); });
 }

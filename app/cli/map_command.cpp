@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <sstream>
 
-#include "cli/backend.hpp"
 #include "cli/commands.hpp"
 #include "cli/exploration.hpp"
 #include "cli/plot_text.hpp"
@@ -18,6 +17,7 @@
 #include "core/io/image_io.hpp"
 #include "core/sim/runner.hpp"
 #include "core/session/session.hpp"
+#include "gl/backend.hpp"
 
 namespace morphogen::cli {
 
@@ -35,6 +35,7 @@ struct MapFlags {
     std::vector<std::string> params;
     std::string backend = "auto";
     std::string context;
+    std::string gpuDevice;
     std::string colormap;
 };
 
@@ -74,7 +75,9 @@ void map(const MapFlags& f) {
     checkWritable(f.out);
     checkStability(s, false);
 
-    Backend backend = makeBackend(parseBackendChoice(f.backend), parseContextFlag(f.context));
+    gl::Backend backend =
+        gl::makeBackend(gl::parseBackendChoice(f.backend), gl::parseContextFlag(f.context),
+                        gl::parseGpuDeviceFlag(f.gpuDevice));
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
     Progress progress("map " + x.param + " x " + y.param, s.steps);
     RunOptions options;
@@ -155,6 +158,9 @@ void addMapCommand(CLI::App& app) {
     cmd->add_option("--param", flags->params, "fix another parameter: name=value (repeatable)");
     cmd->add_option("--backend", flags->backend, "auto, gpu or cpu (default auto)");
     cmd->add_option("--context", flags->context, "GL context: egl or osmesa");
+    cmd->add_option(
+        "--gpu-device", flags->gpuDevice,
+        "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
     cmd->add_option("--colormap", flags->colormap, "colour map name");
     cmd->callback([flags] { map(*flags); });
 }

@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <sstream>
 
-#include "cli/backend.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
@@ -15,6 +14,7 @@
 #include "core/models/initial_condition.hpp"
 #include "core/sim/runner.hpp"
 #include "core/session/session.hpp"
+#include "gl/backend.hpp"
 
 namespace morphogen::cli {
 
@@ -47,6 +47,7 @@ struct RenderFlags {
     std::string schedule;
     std::string backend = "auto";
     std::string context;
+    std::string gpuDevice;
     std::string colormap;
     std::string chemical;
     std::string levels;
@@ -200,7 +201,9 @@ void render(const RenderFlags& f) {
     checkWritable(sessionOut);
 
     checkStability(session);
-    Backend backend = makeBackend(parseBackendChoice(f.backend), parseContextFlag(f.context));
+    gl::Backend backend =
+        gl::makeBackend(gl::parseBackendChoice(f.backend), gl::parseContextFlag(f.context),
+                        gl::parseGpuDeviceFlag(f.gpuDevice));
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
 
     g_interrupted.store(false);
@@ -266,6 +269,9 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option(
         "--context", flags->context,
         "GL context: egl or osmesa (default: $MORPHOGEN_CONTEXT, else egl then osmesa)");
+    cmd->add_option(
+        "--gpu-device", flags->gpuDevice,
+        "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
     cmd->add_option("--colormap", flags->colormap,
                     "grey, two-colour, viridis, magma, inferno, coolwarm");
     cmd->add_option("--chemical", flags->chemical, "chemical to show (default: the model's)");

@@ -14,7 +14,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/backend.hpp"
 #include "cli/commands.hpp"
 #include "cli/exploration.hpp"
 #include "cli/plot_text.hpp"
@@ -25,6 +24,7 @@
 #include "core/io/image_io.hpp"
 #include "core/analysis/pattern_classifier.hpp"
 #include "core/sim/sweep.hpp"
+#include "gl/backend.hpp"
 
 namespace morphogen::cli {
 
@@ -43,6 +43,7 @@ struct SweepFlags {
     long long seed = -1;
     std::string backend = "auto";
     std::string context;
+    std::string gpuDevice;
     bool compare = false;
 };
 
@@ -232,7 +233,9 @@ void sweep(const SweepFlags& f) {
         throw InputError("--out '" + f.out + "' cannot be created as a folder");
     checkWritable((dir / "sheet.png").string());
 
-    Backend backend = makeBackend(parseBackendChoice(f.backend), parseContextFlag(f.context));
+    gl::Backend backend =
+        gl::makeBackend(gl::parseBackendChoice(f.backend), gl::parseContextFlag(f.context),
+                        gl::parseGpuDeviceFlag(f.gpuDevice));
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
     const bool gpu = backend.context != nullptr;
     const int tileCount = spec.columns * spec.rows;
@@ -329,6 +332,9 @@ void addSweepCommand(CLI::App& app) {
     cmd->add_option("--seed", flags->seed, "random seed");
     cmd->add_option("--backend", flags->backend, "auto, gpu or cpu (default auto)");
     cmd->add_option("--context", flags->context, "GL context: egl or osmesa");
+    cmd->add_option(
+        "--gpu-device", flags->gpuDevice,
+        "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
     cmd->add_flag("--compare-one-by-one", flags->compare,
                   "also time the same tiles run one by one on the same backend");
     cmd->callback([flags] { sweep(*flags); });
