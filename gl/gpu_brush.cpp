@@ -33,8 +33,8 @@ std::vector<float> rectTexels(const BrushRegion& region, const CellRect& r, cons
     for (const BrushRegion::Cell& cell : region.cells()) {
         const int x = int(cell.index % w), y = int(cell.index / w);
         if (contains(r, x, y))
-            fill(cell, &rgba[(std::size_t(y - r.y) * std::size_t(r.width) + std::size_t(x - r.x)) *
-                             4]);
+            fill(cell,
+                 &rgba[(std::size_t(y - r.y) * std::size_t(r.width) + std::size_t(x - r.x)) * 4]);
     }
     return rgba;
 }
@@ -86,13 +86,13 @@ void GpuSimulator::applyBrush(const Brush& brush) {
 void GpuSimulator::brushChemical(const Brush& brush) {
     const int textures = m_pingPong.count();
     if (!m_brushProgram.id()) {
-        m_brushProgram = Program(
-            {embeddedShader("glsl/fullscreen.vert")}, {embeddedShader("glsl/brush.frag")},
-            {"STATE_TEXTURES " + std::to_string(textures),
-             "MODE_ADD " + std::to_string(int(BrushMode::Add)),
-             "MODE_REMOVE " + std::to_string(int(BrushMode::Remove)),
-             "MODE_SET " + std::to_string(int(BrushMode::Set)),
-             "MODE_RANDOMISE " + std::to_string(int(BrushMode::Randomise))});
+        m_brushProgram =
+            Program({embeddedShader("glsl/fullscreen.vert")}, {embeddedShader("glsl/brush.frag")},
+                    {"STATE_TEXTURES " + std::to_string(textures),
+                     "MODE_ADD " + std::to_string(int(BrushMode::Add)),
+                     "MODE_REMOVE " + std::to_string(int(BrushMode::Remove)),
+                     "MODE_SET " + std::to_string(int(BrushMode::Set)),
+                     "MODE_RANDOMISE " + std::to_string(int(BrushMode::Randomise))});
         m_brushProgram.use();
         for (int t = 0; t < textures; ++t)
             glUniform1i(m_brushProgram.uniform(("uState" + std::to_string(t)).c_str()),
@@ -113,10 +113,11 @@ void GpuSimulator::brushChemical(const Brush& brush) {
         // Noise comes from the CPU's counter-based generator, so both backends
         // add the same numbers.
         Texture2D mask(rect.width, rect.height, GL_RGBA32F);
-        mask.uploadRgba(rectTexels(brush.region, rect, [&](const BrushRegion::Cell& cell, float* t) {
-            t[0] = cell.weight;
-            t[1] = noisy ? brushNoise(brush.seed, cell.index) : 0.0f;
-        }));
+        mask.uploadRgba(
+            rectTexels(brush.region, rect, [&](const BrushRegion::Cell& cell, float* t) {
+                t[0] = cell.weight;
+                t[1] = noisy ? brushNoise(brush.seed, cell.index) : 0.0f;
+            }));
         mask.bind(kBrushMaskUnit);
         program.use();
         glUniform2i(program.uniform("uRectOrigin"), rect.x, rect.y);
@@ -163,8 +164,7 @@ void GpuSimulator::brushParamMap(const Brush& brush) {
         m_k = std::move(k);
         m_session = std::move(session);
         m_paramMap = Texture2D(m_k.domain.width(), m_k.domain.height(), GL_RGBA32F);
-        m_paramMap.setWrap(m_k.domain.edges() == EdgeMode::Periodic ? GL_REPEAT
-                                                                    : GL_CLAMP_TO_EDGE);
+        m_paramMap.setWrap(m_k.domain.edges() == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE);
         float* plane = m_k.paramMaps.plane(mappedIndex(m_k, *m_model, brush.param));
         for (const BrushRegion::Cell& cell : brush.region.cells())
             plane[cell.index] = blend(plane[cell.index], brush.value, cell.weight);

@@ -57,7 +57,8 @@ int stateTextures(int chemicals);
 // snippet (glsl/models/NAME.glsl) and glsl/step.frag, with the diffusion
 // operator's form as a #define variant; parameters are uniforms and edges are the sampler's wrap
 // mode (or, for a Tiles param map, each tile wraps on its own: the TILES variant). run() issues
-// draws only: nothing is read back until state(). Needs a current context for its whole life.
+// draws only: nothing is read back until state(). Brush writes draw over the region's rectangles
+// (gpu_brush.cpp). Needs a current context for its whole life.
 class GpuSimulator : public Simulator {
 public:
     explicit GpuSimulator(const Session& session);

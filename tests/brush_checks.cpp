@@ -259,8 +259,8 @@ void checkBadBrushes(const SimulatorFactory& make) {
     const State before = sim->state();
     EXPECT_THROW(sim->applyBrush(makeBrush(s, BrushMode::Add, d, 2, 0.1f)), InputError);
     EXPECT_THROW(sim->applyBrush(makeBrush(s, BrushMode::Add, d, -1, 0.1f)), InputError);
-    EXPECT_THROW(sim->applyBrush(makeBrush(s, BrushMode::Add, d, 0,
-                                           std::numeric_limits<float>::quiet_NaN())),
+    EXPECT_THROW(sim->applyBrush(
+                     makeBrush(s, BrushMode::Add, d, 0, std::numeric_limits<float>::quiet_NaN())),
                  InputError);
     EXPECT_THROW(sim->applyBrush(paintBrush(s, d, "Q", 0.1f)), InputError);
     EXPECT_THROW(sim->applyBrush(paintBrush(s, d, "F", 5.0f)), InputError); // range 0 to 0.2

@@ -79,8 +79,8 @@ TEST(GpuBrush, BackendsAgreeOnABrushedRun) {
     gl::GpuSimulator gpu(s);
     const State a = brushedRun(cpu, s), b = brushedRun(gpu, s);
     CpuSimulator unbrushed(s);
-    unbrushed.setState(makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height,
-                                        s.seed));
+    unbrushed.setState(
+        makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, s.seed));
     unbrushed.run(50);
     const float brushEffect = test::maxAbsDifference(a, unbrushed.state());
     const float disagreement = test::maxAbsDifference(a, b);

@@ -66,8 +66,8 @@ TEST(BrushRegion, PeriodicDiscWrapsAcrossTheCornerInFourRectangles) {
     std::set<std::uint32_t> got;
     for (const BrushRegion::Cell& c : region.cells())
         got.insert(c.index);
-    EXPECT_TRUE(got.count(11 * 16 + 15)); // (-1, -1)
-    EXPECT_TRUE(got.count(0 * 16 + 14));  // (-2, 0)
+    EXPECT_TRUE(got.count(11 * 16 + 15));  // (-1, -1)
+    EXPECT_TRUE(got.count(0 * 16 + 14));   // (-2, 0)
     EXPECT_FALSE(got.count(10 * 16 + 14)); // (-2, -2): distance 2.83
 }
 

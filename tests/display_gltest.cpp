@@ -31,7 +31,8 @@ std::vector<std::uint8_t> writerPixels(const State& state, int chemical, const C
 }
 
 // Largest per-channel difference, and how many channels differ at all.
-std::pair<int, int> compare(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+std::pair<int, int> compare(const std::vector<std::uint8_t>& a,
+                            const std::vector<std::uint8_t>& b) {
     EXPECT_EQ(a.size(), b.size());
     int worst = 0, differing = 0;
     for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
@@ -77,9 +78,8 @@ void expectGpuMatchesWriter(const Session& s, const State& state, const Case& c)
     display.render(gpu, chemical, spec);
     const std::vector<std::uint8_t> expected = writerPixels(state, chemical, spec);
     const auto [worst, differing] = compare(display.downloadRgba8(), expected);
-    std::printf("%s %s %s: worst %d, %d of %zu channels differ\n",
-                s.reactionModel().name().c_str(), c.map.c_str(), c.chemical.c_str(), worst,
-                differing, expected.size());
+    std::printf("%s %s %s: worst %d, %d of %zu channels differ\n", s.reactionModel().name().c_str(),
+                c.map.c_str(), c.chemical.c_str(), worst, differing, expected.size());
     EXPECT_LE(worst, 1);
     // A real picture, not a flat field that would match trivially.
     EXPECT_GT(distinctColours(expected), 20);

@@ -1,6 +1,7 @@
 #include "core/sim/brush.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/base/errors.hpp"
@@ -61,8 +62,8 @@ std::string toString(BrushMode mode) {
     return "?";
 }
 
-BrushRegion BrushRegion::disc(const GridDomain& domain, float centreX, float centreY,
-                              float radius, float falloff) {
+BrushRegion BrushRegion::disc(const GridDomain& domain, float centreX, float centreY, float radius,
+                              float falloff) {
     if (!std::isfinite(centreX) || !std::isfinite(centreY))
         throw InputError("brush centre must be finite");
     if (!(radius >= 0.0f) || !std::isfinite(radius))
@@ -165,8 +166,8 @@ void checkBrush(const Brush& brush, const ReactionModel& model, const GridDomain
     case BrushMode::Set:
     case BrushMode::Randomise:
         if (brush.chemical < 0 || brush.chemical >= int(model.chemicals().size()))
-            throw InputError("brush chemical " + std::to_string(brush.chemical) + " is not one of " +
-                             model.name() + "'s chemicals (0 to " +
+            throw InputError("brush chemical " + std::to_string(brush.chemical) +
+                             " is not one of " + model.name() + "'s chemicals (0 to " +
                              std::to_string(model.chemicals().size() - 1) + ": " +
                              model.chemicalNames() + ")");
         break;
@@ -176,9 +177,9 @@ void checkBrush(const Brush& brush, const ReactionModel& model, const GridDomain
             throw InputError("brush parameter '" + brush.param + "' is not a parameter of " +
                              model.name() + " (accepted: " + model.paramNames() + ")");
         if (brush.value < p->min || brush.value > p->max)
-            throw InputError("brush value " + std::to_string(brush.value) + " for '" +
-                             brush.param + "' is outside its range [" + std::to_string(p->min) +
-                             ", " + std::to_string(p->max) + "]");
+            throw InputError("brush value " + std::to_string(brush.value) + " for '" + brush.param +
+                             "' is outside its range [" + std::to_string(p->min) + ", " +
+                             std::to_string(p->max) + "]");
         break;
     }
     case BrushMode::Hold:
@@ -232,7 +233,8 @@ StepConstants withParamMap(Session& session, const StepConstants& k, const std::
     StepConstants next = StepConstants::fromSession(updated); // throws where it cannot run
     next.dt = k.dt;
     for (std::size_t m = 0; m < k.mappedParams.size(); ++m) {
-        const int to = mappedIndex(next, model, model.params()[std::size_t(k.mappedParams[m])].name);
+        const int to =
+            mappedIndex(next, model, model.params()[std::size_t(k.mappedParams[m])].name);
         std::copy(k.paramMaps.plane(int(m)), k.paramMaps.plane(int(m)) + k.paramMaps.cellCount(),
                   next.paramMaps.plane(to));
     }
