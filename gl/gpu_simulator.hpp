@@ -14,6 +14,7 @@ constexpr int kRhsUnits[] = {2, 7, 8};
 constexpr int kMapUnit = 1;
 constexpr int kParamMapUnit = 3;
 constexpr int kFrozenUnit = 4;
+constexpr int kBrushMaskUnit = 9;
 
 // Two sets of `count` same-size float textures, each set behind one
 // framebuffer (multiple render targets); each pass samples the current set
@@ -23,6 +24,10 @@ public:
     PingPong() = default;
     PingPong(int width, int height, GLenum internalFormat, GLenum wrap, int count = 1);
     void run(const Program& program, int passes);
+    // One pass of `program` over rect only (viewport and scissor) into the
+    // other set, whose rect is then copied back into the current one: the
+    // current set changes in rect alone (gpu_brush.cpp).
+    void runRect(const Program& program, const CellRect& rect);
     int count() const { return int(m_textures[0].size()); }
     Texture2D& current(int t = 0) { return m_textures[std::size_t(m_current)][std::size_t(t)]; }
     const Texture2D& current(int t = 0) const {
@@ -52,7 +57,8 @@ int stateTextures(int chemicals);
 // snippet (glsl/models/NAME.glsl) and glsl/step.frag, with the diffusion
 // operator's form as a #define variant; parameters are uniforms and edges are the sampler's wrap
 // mode (or, for a Tiles param map, each tile wraps on its own: the TILES variant). run() issues
-// draws only: nothing is read back until state(). Needs a current context for its whole life.
+// draws only: nothing is read back until state(). Brush writes draw over the region's rectangles
+// (gpu_brush.cpp). Needs a current context for its whole life.
 class GpuSimulator : public Simulator {
 public:
     explicit GpuSimulator(const Session& session);
@@ -62,6 +68,7 @@ public:
     State state() const override;
     void run(int steps) override;
     void setFrozen(const std::vector<std::uint8_t>& frozen) override;
+    void applyBrush(const Brush& brush) override; // gpu_brush.cpp
 
     // The current state texture t (chemicals 4t..4t+3), for passes that read
     // the state where it lives (display, brushes) instead of reading it back.
@@ -74,6 +81,10 @@ private:
     Program buildProgram(const char* pass) const;
     void buildPrograms();
     void bindAuxiliaryTextures() const;
+    // gpu_brush.cpp: the brush modes by what they write.
+    void brushChemical(const Brush& brush);
+    void brushFrozen(const Brush& brush);
+    void brushParamMap(const Brush& brush);
 
     Session m_session;
     const ReactionModel* m_model;
@@ -88,6 +99,7 @@ private:
     Texture2D m_paramMap; // param_maps: up to 4 parameters per cell
     Texture2D m_frozen;   // cascades: 1 where a cell is frozen
     std::vector<std::uint8_t> m_frozenMask;
+    Program m_brushProgram; // built on the first chemical brush
 };
 
 // The shader pieces of a model's step program (also used by the agreement

@@ -57,6 +57,15 @@ void Texture2D::uploadRgba(const std::vector<float>& rgba) {
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_width, m_height, GL_RGBA, GL_FLOAT, rgba.data());
 }
 
+void Texture2D::uploadRgbaRect(int x, int y, int width, int height,
+                               const std::vector<float>& rgba) {
+    assert(x >= 0 && y >= 0 && x + width <= m_width && y + height <= m_height);
+    assert(rgba.size() == std::size_t(width) * std::size_t(height) * 4);
+    glBindTexture(GL_TEXTURE_2D, id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, x, y, width, height, GL_RGBA, GL_FLOAT, rgba.data());
+}
+
 std::vector<float> Texture2D::downloadRgba() const {
     std::vector<float> rgba(std::size_t(m_width) * m_height * 4);
     glBindTexture(GL_TEXTURE_2D, id());

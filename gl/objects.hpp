@@ -68,6 +68,8 @@ public:
     void bind(int unit) const;
     // Whole-texture upload/download of RGBA floats.
     void uploadRgba(const std::vector<float>& rgba);
+    // RGBA floats (width * height * 4) into the rectangle at (x, y).
+    void uploadRgbaRect(int x, int y, int width, int height, const std::vector<float>& rgba);
     std::vector<float> downloadRgba() const;
 
 private:

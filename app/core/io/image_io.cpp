@@ -87,7 +87,7 @@ void writeRgbImage(const std::string& path, const std::vector<float>& rgb, int w
     if (bitDepth == 8) {
         std::vector<unsigned char> px(rgb.size());
         for (std::size_t i = 0; i < rgb.size(); ++i)
-            px[i] = (unsigned char)std::lround(std::clamp(rgb[i], 0.0f, 1.0f) * 255.0f);
+            px[i] = toUnorm8(rgb[i]);
         writeAtomically(path, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8), px.data());
     } else {
         std::vector<unsigned short> px(rgb.size());

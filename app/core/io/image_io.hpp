@@ -1,5 +1,8 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,6 +19,12 @@ ImageFormat imageFormatForPath(const std::string& path);
 // Fails early (before a long run) when the output cannot be created: the
 // folder is missing or not writable. Throws InputError naming the path.
 void checkWritable(const std::string& path);
+
+// An 8-bit image's value for v in [0, 1] (clamped; rounded to nearest): the
+// PNG writer's and the display's CPU path's quantisation.
+inline std::uint8_t toUnorm8(float v) {
+    return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
 
 // Writes interleaved RGB in [0, 1] as 8- or 16-bit PNG/TIFF. Written to a
 // temporary file and renamed, so a failed write leaves no half-written image.

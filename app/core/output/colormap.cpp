@@ -69,6 +69,15 @@ void checkColormapName(const std::string& name) {
     throw InputError("colour map '" + name + "' is unknown (accepted: " + list + ")");
 }
 
+std::vector<Rgb> colormapAnchors(const ColorMapSpec& spec) {
+    checkColormapName(spec.name);
+    if (spec.name == "grey")
+        return {{0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}};
+    if (spec.name == "two-colour")
+        return {spec.low, spec.high};
+    return anchors(spec.name);
+}
+
 int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model) {
     if (spec.chemical.empty())
         return model.displayChemical();
@@ -80,7 +89,7 @@ int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model) {
 }
 
 std::vector<float> applyColormap(const State& state, int chemical, const ColorMapSpec& spec) {
-    checkColormapName(spec.name);
+    const std::vector<Rgb> palette = colormapAnchors(spec);
     const float* p = state.plane(chemical);
     const std::size_t n = state.cellCount();
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
@@ -100,13 +109,9 @@ std::vector<float> applyColormap(const State& state, int chemical, const ColorMa
     for (std::size_t i = 0; i < n; ++i) {
         const float normalised = std::isfinite(p[i]) ? (p[i] - lo) * scale : 0.0f;
         const float t = std::clamp((normalised - levelLow) * levelScale, 0.0f, 1.0f);
-        Rgb c;
-        if (spec.name == "grey")
-            c = {t, t, t};
-        else if (spec.name == "two-colour")
-            c = lerp(spec.low, spec.high, t);
-        else
-            c = samplePalette(anchors(spec.name), t);
+        // Grey and two-colour are two-anchor palettes: 0 + (1 - 0) * t is t
+        // exactly, and low + (high - low) * t the plain blend.
+        const Rgb c = samplePalette(palette, t);
         rgb[i * 3 + 0] = c[0];
         rgb[i * 3 + 1] = c[1];
         rgb[i * 3 + 2] = c[2];

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,14 @@ void checkColormapName(const std::string& name);
 
 // The chemical the colour map shows: spec.chemical, or the model's display chemical.
 int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model);
+
+// The map as evenly spaced anchors, interpolated piecewise linearly: grey is
+// black to white, two-colour spec.low to spec.high (what applyColormap and
+// the GPU display pass both sample).
+std::vector<std::array<float, 3>> colormapAnchors(const ColorMapSpec& spec);
+
+// Most anchors a map has (the GPU display pass's uniform array).
+constexpr int kMaxColormapAnchors = 16;
 
 // One chemical, normalised by its own min and max over the grid (de Kleine's
 // min-max mapping), windowed by spec.levels, through the named map:

@@ -148,7 +148,7 @@ void tensorMapRow(const DiffusionOperator& op, int c, const float* plane, int w,
 CpuSimulator::CpuSimulator(const Session& session)
     : m_model(session.reactionModel()), m_k(StepConstants::fromSession(session)),
       m_current(session.width, session.height, m_k.chemicals),
-      m_next(session.width, session.height, m_k.chemicals) {
+      m_next(session.width, session.height, m_k.chemicals), m_session(session) {
     // Its kernels wrap at the grid's edges, not at tile edges: sweeps run
     // each tile on its own CPU simulator instead (sweep.hpp: runTile).
     if (m_k.tiled())
@@ -173,6 +173,7 @@ void CpuSimulator::run(int steps) {
 void CpuSimulator::setFrozen(const std::vector<std::uint8_t>& frozen) {
     assert(frozen.empty() || frozen.size() == m_current.cellCount());
     // An index list: frozen cells are few, and the fused kernels stay untouched.
+    m_frozenMask = frozen;
     m_frozenCells.clear();
     for (std::size_t i = 0; i < frozen.size(); ++i)
         if (frozen[i])

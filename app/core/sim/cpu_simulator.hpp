@@ -20,6 +20,7 @@ public:
     State state() const override { return m_current; }
     void run(int steps) override;
     void setFrozen(const std::vector<std::uint8_t>& frozen) override;
+    void applyBrush(const Brush& brush) override; // cpu_brush.cpp
 
     // Semi-implicit runs: max over cells of |(I - dt A) c' - (c + dt f(c))|
     // for the last step, i.e. how far the relaxation passes left the solve.
@@ -48,6 +49,8 @@ private:
     State m_next;
     State m_rhs;                              // SemiImplicit: c + dt f(c) of the step being solved
     std::vector<std::uint32_t> m_frozenCells; // indices of frozen cells (cascades)
+    std::vector<std::uint8_t> m_frozenMask;   // the same cells as a mask (brush hold/release)
+    Session m_session; // the session with painted parameters' maps added (brushes)
 };
 
 } // namespace morphogen

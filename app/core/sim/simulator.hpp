@@ -8,6 +8,7 @@
 #include "core/operators/diffusion_operator.hpp"
 #include "core/session/session.hpp"
 #include "core/base/state.hpp"
+#include "core/sim/brush.hpp"
 
 namespace morphogen {
 
@@ -71,6 +72,11 @@ public:
     // Cells marked 1 keep their values exactly (still feeding their
     // neighbours' diffusion); empty: none. Turk's cascades.
     virtual void setFrozen(const std::vector<std::uint8_t>& frozen) = 0;
+    // Writes one brush stroke between steps: only the region's cells change
+    // (the GPU draws over the region's rectangles; nothing is read back or
+    // re-uploaded whole). Throws InputError for a brush the model rejects
+    // (checkBrush), and leaves the simulation unchanged then.
+    virtual void applyBrush(const Brush& brush) = 0;
 };
 
 } // namespace morphogen

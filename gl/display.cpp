@@ -1,0 +1,110 @@
+#include "gl/display.hpp"
+
+#include <cassert>
+#include <string>
+
+#include "core/io/image_io.hpp"
+#include "core/output/colormap.hpp"
+#include "gl/gpu_simulator.hpp"
+
+namespace morphogen::gl {
+
+namespace {
+
+constexpr int kSourceUnit = 0;
+constexpr int kMinMaxUnit = 1;
+
+int quarter(int n) {
+    return (n + 3) / 4;
+}
+
+} // namespace
+
+Display::Display(int width, int height)
+    : m_width(width), m_height(height), m_display(width, height, GL_RGBA8),
+      m_displayFramebuffer(m_display) {
+    const ShaderPiece vertex = embeddedShader("glsl/fullscreen.vert");
+    m_reduceFirst = Program({vertex}, {embeddedShader("glsl/minmax.frag")}, {"FIRST"});
+    m_reduce = Program({vertex}, {embeddedShader("glsl/minmax.frag")}, {});
+    m_colour = Program({vertex}, {embeddedShader("glsl/display.frag")},
+                       {"MAX_ANCHORS " + std::to_string(kMaxColormapAnchors)});
+    for (const Program* p : {&m_reduceFirst, &m_reduce}) {
+        p->use();
+        glUniform1i(p->uniform("uSource"), kSourceUnit);
+    }
+    m_colour.use();
+    glUniform1i(m_colour.uniform("uState"), kSourceUnit);
+    glUniform1i(m_colour.uniform("uMinMax"), kMinMaxUnit);
+    int w = width, h = height;
+    do {
+        w = quarter(w);
+        h = quarter(h);
+        m_levels.emplace_back(w, h, GL_RG32F);
+    } while (w > 1 || h > 1);
+    for (const Texture2D& level : m_levels)
+        m_levelFramebuffers.emplace_back(level);
+}
+
+void Display::update(const Simulator& simulator, int chemical, const ColorMapSpec& spec) {
+    if (const auto* gpu = dynamic_cast<const GpuSimulator*>(&simulator))
+        render(*gpu, chemical, spec);
+    else
+        upload(simulator.state(), chemical, spec);
+}
+
+void Display::render(const GpuSimulator& simulator, int chemical, const ColorMapSpec& spec) {
+    const Texture2D& state = simulator.stateTexture(chemical / 4);
+    assert(chemical >= 0 && chemical / 4 < simulator.stateTextureCount());
+    assert(state.width() == m_width && state.height() == m_height);
+    const std::vector<std::array<float, 3>> anchors = colormapAnchors(spec); // checks the name
+    assert(anchors.size() >= 2 && anchors.size() <= std::size_t(kMaxColormapAnchors));
+    m_vao.bind();
+
+    const Texture2D* source = &state;
+    for (std::size_t i = 0; i < m_levels.size(); ++i) {
+        const Program& program = i == 0 ? m_reduceFirst : m_reduce;
+        program.use();
+        if (i == 0)
+            glUniform1i(program.uniform("uComponent"), chemical % 4);
+        glUniform2i(program.uniform("uSourceSize"), source->width(), source->height());
+        source->bind(kSourceUnit);
+        m_levelFramebuffers[i].bind();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        source = &m_levels[i];
+    }
+
+    m_colour.use();
+    glUniform1i(m_colour.uniform("uComponent"), chemical % 4);
+    glUniform2f(m_colour.uniform("uLevels"), spec.levels[0],
+                1.0f / (spec.levels[1] - spec.levels[0]));
+    glUniform3fv(m_colour.uniform("uAnchors"), GLsizei(anchors.size()), anchors[0].data());
+    glUniform1i(m_colour.uniform("uAnchorCount"), GLint(anchors.size()));
+    state.bind(kSourceUnit);
+    m_levels.back().bind(kMinMaxUnit);
+    m_displayFramebuffer.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Display::upload(const State& state, int chemical, const ColorMapSpec& spec) {
+    assert(state.width() == m_width && state.height() == m_height);
+    const std::vector<float> rgb = applyColormap(state, chemical, spec);
+    std::vector<std::uint8_t> rgba(state.cellCount() * 4, 255);
+    for (std::size_t i = 0; i < state.cellCount(); ++i)
+        for (std::size_t k = 0; k < 3; ++k)
+            rgba[i * 4 + k] = toUnorm8(rgb[i * 3 + k]);
+    glBindTexture(GL_TEXTURE_2D, m_display.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE,
+                    rgba.data());
+}
+
+std::vector<std::uint8_t> Display::downloadRgba8() const {
+    std::vector<std::uint8_t> rgba(std::size_t(m_width) * std::size_t(m_height) * 4);
+    glBindTexture(GL_TEXTURE_2D, m_display.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    return rgba;
+}
+
+} // namespace morphogen::gl
