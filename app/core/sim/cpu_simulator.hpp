@@ -20,6 +20,8 @@ public:
     State state() const override { return m_current; }
     void run(int steps) override;
     void setFrozen(const std::vector<std::uint8_t>& frozen) override;
+    void setParams(const ParamValues& params) override;
+    void setDt(float dt) override;
 
     // Semi-implicit runs: max over cells of |(I - dt A) c' - (c + dt f(c))|
     // for the last step, i.e. how far the relaxation passes left the solve.
@@ -38,6 +40,11 @@ private:
     // The diffusion term of chemical c on row y, rate included.
     void diffusionRow(int c, const float* plane, int y, float* out) const;
 
+    // Picks the fused kernels for the current constants (a rate of 0 may
+    // need the generic path).
+    void pickKernels();
+
+    Session m_session; // as built, with live params and dt applied
     const ReactionModel& m_model;
     // Null where the generic path runs.
     StepRowsKernel m_explicitStep = nullptr;

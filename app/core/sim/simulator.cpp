@@ -1,5 +1,7 @@
 #include "core/sim/simulator.hpp"
 
+#include <cassert>
+
 #include "core/base/errors.hpp"
 #include "core/numerics/kernel_symbol.hpp"
 #include "core/session/param_map.hpp"
@@ -91,6 +93,21 @@ StepConstants StepConstants::fromSession(const Session& session) {
         }
     }
     return k;
+}
+
+void updateLiveConstants(StepConstants& k, const Session& session) {
+    // The whole derivation again keeps one source of truth for every value;
+    // its cost is host work only (no GL), small next to a frame.
+    StepConstants fresh = StepConstants::fromSession(session);
+    assert(fresh.op.form == k.op.form && fresh.chemicals == k.chemicals);
+    k.dt = fresh.dt;
+    k.params = std::move(fresh.params);
+    k.op.rates = fresh.op.rates;
+    k.op.kernels = fresh.op.kernels;
+    k.op.mapCoefficients = fresh.op.mapCoefficients;
+    k.op.stabilization = fresh.op.stabilization;
+    k.omega = fresh.omega;
+    k.contraction = fresh.contraction;
 }
 
 } // namespace morphogen

@@ -71,6 +71,19 @@ public:
     // Cells marked 1 keep their values exactly (still feeding their
     // neighbours' diffusion); empty: none. Turk's cascades.
     virtual void setFrozen(const std::vector<std::uint8_t>& frozen) = 0;
+
+    // Live changes, in force from the next step, without a rebuild or a
+    // read-back: the GPU updates uniforms, the CPU its StepConstants.
+    // `params` holds every parameter of the model (Session::params); mapped
+    // parameters keep their per-cell maps. The caller validates the values.
+    virtual void setParams(const ParamValues& params) = 0;
+    virtual void setDt(float dt) = 0;
 };
+
+// The constants a live change of parameters or dt alters (params, dt, the
+// operator's rates, kernels and map coefficients, the semi-implicit weights),
+// recomputed for `session`, which differs from the one k was made from only in
+// params and dt. The operator's form, maps and integrator stay.
+void updateLiveConstants(StepConstants& k, const Session& session);
 
 } // namespace morphogen
