@@ -302,12 +302,11 @@ TEST(LiveChanges, BadValuesAreRefusedAndChangeNothing) {
     EXPECT_THROW(run.setDt(0.0f), InputError);
     EXPECT_THROW(run.setDt(std::nanf("")), InputError);
     run.advance(80);
-    EXPECT_EQ(test::maxAbsDifference(run.state(), runFrom(s, makeInitialState(s.init,
-                                                                              s.reactionModel(),
-                                                                              s.params, 32, 32,
-                                                                              s.seed),
-                                                          80)),
-              0.0f);
+    EXPECT_EQ(
+        test::maxAbsDifference(
+            run.state(),
+            runFrom(s, makeInitialState(s.init, s.reactionModel(), s.params, 32, 32, s.seed), 80)),
+        0.0f);
 }
 
 TEST(LiveChanges, ACascadeStageChangedLiveIsRecordedSoItReproduces) {

@@ -230,8 +230,8 @@ nlohmann::json throughputRows(const Session& base, const BenchFlags& f, bool gpu
 // Operators: the 3x3 and 5x5 passes beside the 5-point one (McGraw's GPU ran
 // the 5x5 pass at 0.33 of the isotropic rate at 512^2).
 nlohmann::json operatorRows(const Session& base, const BenchFlags& f, bool gpuRows) {
-    std::printf("\n%-16s %-6s %14s %10s %14s %10s\n", "operator", "size", "gpu it/s",
-                "vs 5-point", "cpu it/s", "vs 5-point");
+    std::printf("\n%-16s %-6s %14s %10s %14s %10s\n", "operator", "size", "gpu it/s", "vs 5-point",
+                "cpu it/s", "vs 5-point");
     nlohmann::json rows = nlohmann::json::array();
     for (int n : parseSizes(f.operatorSizes)) {
         double gpuBase = 0, cpuBase = 0;
@@ -292,10 +292,8 @@ nlohmann::json convergenceRows(const BenchFlags& f) {
                 "features", "vs flat");
     nlohmann::json rows = nlohmann::json::array();
     double flatSeconds = 0;
-    for (auto& [name, s] :
-         std::vector<std::pair<std::string, Session>>{{"flat explicit", flat},
-                                                      {"semi-implicit 5x dt", semi},
-                                                      {"coarse-to-fine", coarse}}) {
+    for (auto& [name, s] : std::vector<std::pair<std::string, Session>>{
+             {"flat explicit", flat}, {"semi-implicit 5x dt", semi}, {"coarse-to-fine", coarse}}) {
         std::fprintf(stderr, "bench: %dx%d %s until the spot count settles...\n", n, n,
                      name.c_str());
         const Convergence c = timeToConverge(s, backend.makeSimulator, checkTime, 40000);

@@ -146,7 +146,8 @@ void tensorMapRow(const DiffusionOperator& op, int c, const float* plane, int w,
 } // namespace
 
 CpuSimulator::CpuSimulator(const Session& session)
-    : m_session(session), m_model(session.reactionModel()), m_k(StepConstants::fromSession(session)),
+    : m_session(session), m_model(session.reactionModel()),
+      m_k(StepConstants::fromSession(session)),
       m_current(session.width, session.height, m_k.chemicals),
       m_next(session.width, session.height, m_k.chemicals) {
     // Its kernels wrap at the grid's edges, not at tile edges: sweeps run

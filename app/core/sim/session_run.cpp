@@ -72,8 +72,8 @@ void SessionRun::enterSegment(std::size_t i) {
     if (i == 0)
         // A batched sweep starts every tile from its own initial state.
         m_state = isBatchedSweep(part) ? batchedInitialState(part)
-                                       : makeInitialState(part.init, model, part.params,
-                                                          part.width, part.height, part.seed);
+                                       : makeInitialState(part.init, model, part.params, part.width,
+                                                          part.height, part.seed);
     else if (m_state.width() != part.width || m_state.height() != part.height)
         m_state = resampleBilinear(m_state, part.width, part.height, part.edges);
     // The rule reads the previous stage's result, with that stage's model.
@@ -207,7 +207,8 @@ Session SessionRun::completed() const {
                 done.stages[i].dt = part.dt;
             for (const auto& [name, value] : part.params) {
                 auto it = inherited.find(name);
-                if (it == inherited.end() || it->second != value || done.stages[i].params.count(name))
+                if (it == inherited.end() || it->second != value ||
+                    done.stages[i].params.count(name))
                     done.stages[i].params[name] = value;
             }
         }
