@@ -315,15 +315,26 @@ void GpuSimulator::updateLiveUniforms() {
 }
 
 void GpuSimulator::setParams(const ParamValues& params) {
-    m_session.params = params;
-    updateLiveConstants(m_k, m_session);
-    updateLiveUniforms();
+    // Derived on a copy first: a refused change (InputError) leaves the run as it was.
+    Session next = m_session;
+    next.params = params;
+    const bool uniformsOnly = updateLiveConstants(m_k, next);
+    m_session = std::move(next);
+    if (uniformsOnly)
+        updateLiveUniforms();
+    else
+        buildPrograms();
 }
 
 void GpuSimulator::setDt(float dt) {
-    m_session.dt = dt;
-    updateLiveConstants(m_k, m_session);
-    updateLiveUniforms();
+    Session next = m_session;
+    next.dt = dt;
+    const bool uniformsOnly = updateLiveConstants(m_k, next);
+    m_session = std::move(next);
+    if (uniformsOnly)
+        updateLiveUniforms();
+    else
+        buildPrograms();
 }
 
 } // namespace morphogen::gl

@@ -101,6 +101,26 @@ TEST(GpuLiveChanges, ParamsChangedMidRunAreUniformsOnly) {
     }
 }
 
+TEST(GpuLiveChanges, AGeneralizedKernelFromZeroRatesIsLive) {
+    test::glContext();
+    Session s = test::smallSession("gs_coral", 32, 40);
+    s.diffusion.type = DiffusionType::Generalized;
+    s.diffusion.generalized = {{"u", "c"}, {"v", "c"}};
+    Session still = s;
+    // A zero kernel (on the CPU: the generic path; the change re-picks the fused one).
+    still.params["Du"] = still.params["Dv"] = 0.0f;
+    gl::GpuSimulator gpu(still);
+    gpu.setState(initial(still));
+    gpu.run(10);
+    const State middle = gpu.state();
+    const int builds = gpu.programBuilds();
+    gpu.setParams(s.params);
+    gpu.run(20);
+    EXPECT_EQ(gpu.programBuilds(), builds);
+    EXPECT_LT(test::maxAbsDifference(gpu.state(), gpuFrom(s, middle, 20)), 1e-5f);
+    EXPECT_GT(test::maxAbsDifference(gpu.state(), gpuFrom(still, middle, 20)), 1e-4f);
+}
+
 TEST(GpuLiveChanges, DtChangedMidRunIsAUniformAndTheSemiImplicitWeightFollows) {
     test::glContext();
     for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicit}) {

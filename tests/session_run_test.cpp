@@ -208,6 +208,10 @@ Session smallCoral() {
     return s;
 }
 
+State initial(const Session& s) {
+    return makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, s.seed);
+}
+
 // `steps` steps of `s` on a CPU simulator built for it, from `start`.
 State runFrom(const Session& s, const State& start, int steps) {
     CpuSimulator sim(s);
@@ -253,6 +257,23 @@ TEST(LiveChanges, ADiffusionRateChangedMidRunIsLive) {
     sim.setParams(changed.params);
     sim.run(10);
     EXPECT_EQ(test::maxAbsDifference(sim.state(), runFrom(changed, before, 10)), 0.0f);
+}
+
+TEST(LiveChanges, AGeneralizedKernelFromZeroRatesIsLive) {
+    Session s = smallCoral();
+    s.diffusion.type = DiffusionType::Generalized;
+    s.diffusion.generalized = {{"u", "c"}, {"v", "c"}};
+    Session still = s;
+    // A zero kernel (on the CPU: the generic path; the change re-picks the fused one).
+    still.params["Du"] = still.params["Dv"] = 0.0f;
+    CpuSimulator sim(still);
+    sim.setState(initial(still));
+    sim.run(10);
+    const State middle = sim.state();
+    sim.setParams(s.params);
+    sim.run(20);
+    EXPECT_EQ(test::maxAbsDifference(sim.state(), runFrom(s, middle, 20)), 0.0f);
+    EXPECT_GT(test::maxAbsDifference(sim.state(), runFrom(still, middle, 20)), 1e-4f);
 }
 
 TEST(LiveChanges, DtChangedMidRunEqualsARunBuiltWithIt) {

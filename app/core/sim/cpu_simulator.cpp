@@ -375,14 +375,20 @@ void CpuSimulator::pickKernels() {
 }
 
 void CpuSimulator::setParams(const ParamValues& params) {
-    m_session.params = params;
-    updateLiveConstants(m_k, m_session);
+    // Derived on a copy first: a refused change (InputError) leaves the run as it was.
+    Session next = m_session;
+    next.params = params;
+    updateLiveConstants(m_k, next);
+    m_session = std::move(next);
     pickKernels();
 }
 
 void CpuSimulator::setDt(float dt) {
-    m_session.dt = dt;
-    updateLiveConstants(m_k, m_session);
+    Session next = m_session;
+    next.dt = dt;
+    updateLiveConstants(m_k, next);
+    m_session = std::move(next);
+    pickKernels();
 }
 
 } // namespace morphogen

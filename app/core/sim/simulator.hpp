@@ -83,7 +83,10 @@ public:
 // The constants a live change of parameters or dt alters (params, dt, the
 // operator's rates, kernels and map coefficients, the semi-implicit weights),
 // recomputed for `session`, which differs from the one k was made from only in
-// params and dt. The operator's form, maps and integrator stay.
-void updateLiveConstants(StepConstants& k, const Session& session);
+// params and dt. The operator's form, maps and integrator stay, and it returns
+// true; false when the new rates need another operator form (a generalized
+// kernel growing from 3x3 to 5x5 as a rate leaves 0): k is then replaced
+// whole and the backend must rebuild its step.
+bool updateLiveConstants(StepConstants& k, const Session& session);
 
 } // namespace morphogen
