@@ -206,38 +206,14 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         glUniform1i(program.uniform(("uState" + std::to_string(t)).c_str()), kStateUnits[t]);
     glUniform2f(program.uniform("uInvSize"), 1.0f / float(session.width),
                 1.0f / float(session.height));
-    glUniform1f(program.uniform("uDt"), m_k.dt);
-    setChemicalVec4s(program.uniform("uDiffusion"), op.rates, textures);
-    setChemicalVec4s(program.uniform("uClampMin"), m_k.clampMin, textures);
-    setChemicalVec4s(program.uniform("uClampMax"), m_k.clampMax, textures);
-    for (std::size_t i = 0; i < model.params().size(); ++i)
-        glUniform1f(program.uniform(("u_" + model.params()[i].name).c_str()), m_k.params[i]);
     glUniform1i(program.uniform("uParamMap"), kParamMapUnit);
     glUniform1i(program.uniform("uFrozen"), kFrozenUnit);
     if (m_k.tiled())
         glUniform2i(program.uniform("uTile"), m_k.tile[0], m_k.tile[1]);
-
-    if (op.form == Form::Kernel3 || op.form == Form::Kernel5) {
-        // Texture t's taps, one vec4 each, one component per chemical.
-        std::vector<float> weights(std::size_t(textures) * 25 * 4, 0.0f);
-        for (int c = 0; c < op.chemicals; ++c)
-            for (std::size_t tap = 0; tap < 25; ++tap)
-                weights[(std::size_t(c / 4) * 25 + tap) * 4 + std::size_t(c % 4)] =
-                    float(op.kernels[std::size_t(c)].w[tap]);
-        glUniform4fv(program.uniform("uKernel"), 25 * textures, weights.data());
-    }
-    if (op.form == Form::TensorMap) {
+    if (op.form == Form::TensorMap)
         glUniform1i(program.uniform("uMap"), kMapUnit);
-        std::array<float, kMaxChemicals> m{}, dc{}, ds{};
-        for (int c = 0; c < op.chemicals; ++c) {
-            m[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][0];
-            dc[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][1];
-            ds[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][2];
-        }
-        setChemicalVec4s(program.uniform("uMapM"), m, textures);
-        setChemicalVec4s(program.uniform("uMapDc"), dc, textures);
-        setChemicalVec4s(program.uniform("uMapDs"), ds, textures);
-    }
+    setLiveUniforms(program);
+    ++m_programBuilds;
     return program;
 }
 
@@ -293,6 +269,72 @@ CopyPass::CopyPass(int width, int height, int chemicals)
     for (int t = 0; t < textures; ++t)
         glUniform1i(m_program.uniform(("uState" + std::to_string(t)).c_str()), kStateUnits[t]);
     glUniform2f(m_program.uniform("uInvSize"), 1.0f / float(width), 1.0f / float(height));
+}
+
+void GpuSimulator::setLiveUniforms(const Program& program) const {
+    using Form = DiffusionOperator::Form;
+    const ReactionModel& model = *m_model;
+    const DiffusionOperator& op = m_k.op;
+    const int textures = stateTextures(m_k.chemicals);
+    program.use();
+    glUniform1f(program.uniform("uDt"), m_k.dt);
+    setChemicalVec4s(program.uniform("uDiffusion"), op.rates, textures);
+    setChemicalVec4s(program.uniform("uClampMin"), m_k.clampMin, textures);
+    setChemicalVec4s(program.uniform("uClampMax"), m_k.clampMax, textures);
+    for (std::size_t i = 0; i < model.params().size(); ++i)
+        glUniform1f(program.uniform(("u_" + model.params()[i].name).c_str()), m_k.params[i]);
+    if (op.form == Form::Kernel3 || op.form == Form::Kernel5) {
+        // Texture t's taps, one vec4 each, one component per chemical.
+        std::vector<float> weights(std::size_t(textures) * 25 * 4, 0.0f);
+        for (int c = 0; c < op.chemicals; ++c)
+            for (std::size_t tap = 0; tap < 25; ++tap)
+                weights[(std::size_t(c / 4) * 25 + tap) * 4 + std::size_t(c % 4)] =
+                    float(op.kernels[std::size_t(c)].w[tap]);
+        glUniform4fv(program.uniform("uKernel"), 25 * textures, weights.data());
+    }
+    if (op.form == Form::TensorMap) {
+        std::array<float, kMaxChemicals> m{}, dc{}, ds{};
+        for (int c = 0; c < op.chemicals; ++c) {
+            m[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][0];
+            dc[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][1];
+            ds[std::size_t(c)] = op.mapCoefficients[std::size_t(c)][2];
+        }
+        setChemicalVec4s(program.uniform("uMapM"), m, textures);
+        setChemicalVec4s(program.uniform("uMapDc"), dc, textures);
+        setChemicalVec4s(program.uniform("uMapDs"), ds, textures);
+    }
+}
+
+void GpuSimulator::updateLiveUniforms() {
+    setLiveUniforms(m_program);
+    if (m_k.integrator == Integrator::SemiImplicit) {
+        // omega depends on dt (and the kernel): the Jacobi pass's own uniform.
+        setChemicalVec4s(m_program.uniform("uOmega"), m_k.omega, m_pingPong.count());
+        setLiveUniforms(m_rhsProgram);
+    }
+}
+
+void GpuSimulator::setParams(const ParamValues& params) {
+    // Derived on a copy first: a refused change (InputError) leaves the run as it was.
+    Session next = m_session;
+    next.params = params;
+    const bool uniformsOnly = updateLiveConstants(m_k, next);
+    m_session = std::move(next);
+    if (uniformsOnly)
+        updateLiveUniforms();
+    else
+        buildPrograms();
+}
+
+void GpuSimulator::setDt(float dt) {
+    Session next = m_session;
+    next.dt = dt;
+    const bool uniformsOnly = updateLiveConstants(m_k, next);
+    m_session = std::move(next);
+    if (uniformsOnly)
+        updateLiveUniforms();
+    else
+        buildPrograms();
 }
 
 } // namespace morphogen::gl

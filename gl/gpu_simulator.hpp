@@ -75,6 +75,11 @@ public:
     const Texture2D& stateTexture(int t) const { return m_pingPong.current(t); }
     int stateTextureCount() const { return m_pingPong.count(); }
 
+    void setParams(const ParamValues& params) override;
+    void setDt(float dt) override;
+    // Step programs compiled so far (tests check that live changes compile none).
+    int programBuilds() const { return m_programBuilds; }
+
 private:
     // Compiles glsl/step.frag with the operator's variant plus `pass`, and
     // sets the uniforms every variant shares.
@@ -100,6 +105,12 @@ private:
     Texture2D m_frozen;   // cascades: 1 where a cell is frozen
     std::vector<std::uint8_t> m_frozenMask;
     Program m_brushProgram; // built on the first chemical brush
+
+    // The uniforms a live change alters (dt, parameters, rates, kernels, map
+    // coefficients) on one step program, and the semi-implicit weights.
+    void setLiveUniforms(const Program& program) const;
+    void updateLiveUniforms();
+    mutable int m_programBuilds = 0;
 };
 
 // The shader pieces of a model's step program (also used by the agreement

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/operators/stability.hpp"
+#include "core/sim/stability_check.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;
@@ -35,4 +36,45 @@ TEST(Stability, InsaneValuesAreFoundAndNamed) {
     found = findInsaneValue(st, gs);
     ASSERT_TRUE(found);
     EXPECT_NE(found->find("sane range"), std::string::npos);
+}
+
+// The engine's session check (the CLI prints its notes; the designer shows them).
+TEST(SessionStability, EachCascadeStageIsCheckedAndCappedWithItsOwnDt) {
+    Session s = test::smallSession("gs_coral", 16, 40);
+    s.stages.resize(2);
+    s.stages[0].steps = 20;
+    s.stages[1].steps = 20;
+    s.stages[1].dt = 5.0f;
+    const StabilityReport report = checkSessionStability(s, true);
+    EXPECT_FALSE(report.refused);
+    EXPECT_TRUE(report.capped);
+    ASSERT_EQ(report.notes.size(), 2u);
+    EXPECT_FALSE(report.notes[0].warning);
+    EXPECT_EQ(report.notes[0].text.rfind("stage 1: explicit step: spectral radius", 0), 0u)
+        << report.notes[0].text;
+    EXPECT_TRUE(report.notes[1].warning);
+    EXPECT_EQ(report.notes[1].text.rfind("stage 2: dt 5 exceeds the explicit stability limit", 0),
+              0u)
+        << report.notes[1].text;
+    ASSERT_TRUE(s.stages[1].dt);
+    EXPECT_LT(*s.stages[1].dt, 5.0f);
+    EXPECT_FALSE(s.stages[0].dt);
+    // The capped session passes.
+    Session again = s;
+    const StabilityReport second = checkSessionStability(again, false);
+    EXPECT_FALSE(second.capped);
+    EXPECT_TRUE(second.notes.empty());
+    EXPECT_EQ(*again.stages[1].dt, *s.stages[1].dt);
+}
+
+TEST(SessionStability, AnOperatorGrowingForEveryDtIsRefused) {
+    Session s = test::smallSession("gs_coral", 16, 10);
+    s.diffusion.type = DiffusionType::Generalized;
+    s.diffusion.generalized = {{"u", "d"}, {"v", "d"}};
+    s.diffusion.stabilize = false;
+    const StabilityReport report = checkSessionStability(s, false);
+    ASSERT_TRUE(report.refused);
+    EXPECT_NE(report.refused->find("grow for every explicit time step"), std::string::npos);
+    s.diffusion.stabilize = true;
+    EXPECT_FALSE(checkSessionStability(s, false).refused);
 }

@@ -11,10 +11,10 @@
 
 #include "cli/commands.hpp"
 #include "core/sim/cpu_simulator.hpp"
+#include "core/sim/session_run.hpp"
 #include "core/base/errors.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/analysis/pattern_stats.hpp"
-#include "core/numerics/resample.hpp"
 #include "core/session/session.hpp"
 #include "gl/backend.hpp"
 #include "gl/gpu_simulator.hpp"
@@ -70,6 +70,7 @@ std::vector<std::pair<std::string, Session>> operatorVariants(const Session& bas
     for (const ChemicalSpec& c : base.reactionModel().chemicals())
         generalized.diffusion.generalized[c.name] = "c";
     variants.emplace_back("generalized 5x5", generalized);
+    // Further operator rows (e.g. an even 5x5 set) go here, after set (c).
     return variants;
 }
 
@@ -80,51 +81,59 @@ struct Convergence {
     bool converged = false;
 };
 
+// Whether the last three feature counts changed by at most 1% each.
+bool settled(const std::vector<int>& counts) {
+    const std::size_t n = counts.size();
+    if (n < 4 || counts[n - 1] <= 0)
+        return false;
+    for (std::size_t k = n - 3; k < n; ++k)
+        if (std::abs(counts[k] - counts[k - 1]) > 0.01 * counts[k])
+            return false;
+    return true;
+}
+
 // Runs until the feature (spot) count stops changing: within 1% over three
 // checks spaced `checkTime` simulated time units apart. Coarse levels of a
-// schedule run to convergence too, then hand over to the next size.
+// schedule run to convergence too (at most maxSteps each, in whole checks),
+// then hand over to the next size: a SessionRun whose levels end early.
 Convergence timeToConverge(const Session& session, const SimulatorFactory& make, double checkTime,
                            int maxSteps) {
-    std::vector<ScheduleLevel> levels = session.schedule;
-    if (levels.empty())
-        levels.push_back({session.width, session.height, 0});
-    const ReactionModel& model = session.reactionModel();
-    const int chemical = model.displayChemical();
+    const int chunk = std::max(1, int(std::lround(checkTime / session.dt)));
+    const int levelSteps = (maxSteps + chunk - 1) / chunk * chunk;
+    Session s = session;
+    if (s.schedule.empty()) {
+        s.steps = levelSteps;
+    } else {
+        std::vector<ScheduleLevel> levels = s.schedule;
+        for (ScheduleLevel& level : levels)
+            level.steps = levelSteps;
+        applySchedule(s, std::move(levels));
+    }
+    const int chemical = s.reactionModel().displayChemical();
     Convergence result;
     const auto start = Clock::now();
-    State state;
-    for (std::size_t i = 0; i < levels.size(); ++i) {
-        Session level = session;
-        level.schedule.clear();
-        level.width = levels[i].width;
-        level.height = levels[i].height;
-        level.gridSpacing = double(session.width) / level.width;
-        auto simulator = make(level);
-        state = i == 0 ? makeInitialState(level.init, model, level.params, level.width,
-                                          level.height, level.seed)
-                       : resampleBilinear(state, level.width, level.height, level.edges);
-        simulator->setState(state);
-        const int chunk = std::max(1, int(std::lround(checkTime / level.dt)));
-        std::vector<int> counts;
-        result.converged = false;
-        for (int steps = 0; steps < maxSteps; steps += chunk) {
-            simulator->run(chunk);
-            result.steps += chunk;
-            state = simulator->state();
-            counts.push_back(featureCount(state, chemical));
-            const std::size_t n = counts.size();
-            if (n >= 4 && counts[n - 1] > 0) {
-                bool steady = true;
-                for (std::size_t k = n - 3; k < n; ++k)
-                    steady = steady && std::abs(counts[k] - counts[k - 1]) <= 0.01 * counts[k];
-                if (steady) {
-                    result.converged = true;
-                    break;
-                }
-            }
+    // Blow-up is only checked at level ends: each count reads the state back already.
+    SessionRun run(s, make, 0);
+    std::vector<int> counts;
+    while (!run.finished()) {
+        const RunPosition at = run.position();
+        const bool lastLevel = at.segment + 1 == at.segments;
+        run.advance(chunk);
+        if (!lastLevel && run.position().segment != at.segment) {
+            counts.clear(); // the level ran all its steps without settling
+            continue;
         }
-        result.features = counts.empty() ? 0 : counts.back();
+        counts.push_back(featureCount(run.state(), chemical));
+        result.converged = settled(counts);
+        if (result.converged && !lastLevel) {
+            run.endSegment();
+            counts.clear();
+        } else if (result.converged) {
+            break;
+        }
     }
+    result.steps = run.position().stepsDone;
+    result.features = counts.empty() ? 0 : counts.back();
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return result;
 }
@@ -146,19 +155,19 @@ std::vector<int> parseSizes(const std::string& text) {
     return sizes;
 }
 
-void bench(const BenchFlags& f) {
-    const std::vector<int> sizes = parseSizes(f.sizes);
+void checkFlags(const BenchFlags& f) {
+    parseSizes(f.sizes);
+    parseSizes(f.operatorSizes); // refused before any row runs
     if (!(f.seconds > 0))
         throw InputError("--seconds must be positive");
     if (f.convergenceSize < 32 || f.convergenceSize > kMaxGridSide || f.convergenceSize % 2 != 0)
         throw InputError("--convergence-size " + std::to_string(f.convergenceSize) +
                          ": accepted are even sizes in 32.." + std::to_string(kMaxGridSide));
-    Session base = loadPreset(f.preset);
-    nlohmann::json report;
-    report["preset"] = base.name;
-    report["model"] = base.model;
-    report["seconds_per_measurement"] = f.seconds;
+}
 
+// The headless context of the GPU rows, described in the report; null (GPU
+// rows skipped) when there is none.
+std::unique_ptr<gl::Context> openContext(const BenchFlags& f, nlohmann::json& report) {
     std::unique_ptr<gl::Context> context;
     try {
         context = gl::createHeadlessContext(gl::parseContextFlag(f.context),
@@ -173,11 +182,15 @@ void bench(const BenchFlags& f) {
         std::fprintf(stderr, "bench: no GL context, GPU rows skipped: %s\n", e.what());
         report["gl_error"] = e.what();
     }
+    return context;
+}
 
+// Step throughput per size: the GPU step against its copy pass, and the CPU.
+nlohmann::json throughputRows(const Session& base, const BenchFlags& f, bool gpuRows) {
     std::printf("%-6s %14s %14s %14s %10s %14s %12s\n", "size", "gpu step it/s", "gpu copy it/s",
                 "gpu cells/s", "step/copy", "cpu it/s", "cpu cells/s");
     nlohmann::json rows = nlohmann::json::array();
-    for (int n : sizes) {
+    for (int n : parseSizes(f.sizes)) {
         Session s = base;
         s.width = s.height = n;
         const double cells = double(n) * n;
@@ -186,7 +199,7 @@ void bench(const BenchFlags& f) {
         nlohmann::json row;
         row["size"] = n;
         double gpuStep = 0, gpuCopy = 0, cpu = 0;
-        if (context) {
+        if (gpuRows) {
             std::fprintf(stderr, "bench: %dx%d gpu step...\n", n, n);
             gl::GpuSimulator gpu(s);
             gpu.setState(initial);
@@ -206,7 +219,7 @@ void bench(const BenchFlags& f) {
             cpu = measure([&](int k) { cpuSim.run(k); }, [] {}, f.seconds, batch);
             row["cpu_iterations_per_s"] = cpu;
             row["cpu_cell_updates_per_s"] = cpu * cells;
-            if (context)
+            if (gpuRows)
                 row["gpu_step_over_cpu"] = gpuStep / cpu;
         }
         std::printf("%-6d %14.1f %14.1f %14.3g %10.3f %14.1f %12.3g\n", n, gpuStep, gpuCopy,
@@ -214,13 +227,15 @@ void bench(const BenchFlags& f) {
         std::fflush(stdout);
         rows.push_back(row);
     }
-    report["results"] = rows;
+    return rows;
+}
 
-    // Operators: the 3x3 and 5x5 passes beside the 5-point one (McGraw's GPU
-    // ran the 5x5 pass at 0.33 of the isotropic rate at 512^2).
+// Operators: the 3x3 and 5x5 passes beside the 5-point one (McGraw's GPU ran
+// the 5x5 pass at 0.33 of the isotropic rate at 512^2).
+nlohmann::json operatorRows(const Session& base, const BenchFlags& f, bool gpuRows) {
     std::printf("\n%-16s %-6s %14s %10s %14s %10s\n", "operator", "size", "gpu it/s", "vs 5-point",
                 "cpu it/s", "vs 5-point");
-    nlohmann::json operatorRows = nlohmann::json::array();
+    nlohmann::json rows = nlohmann::json::array();
     for (int n : parseSizes(f.operatorSizes)) {
         double gpuBase = 0, cpuBase = 0;
         for (auto& [name, variant] : operatorVariants(base)) {
@@ -233,7 +248,7 @@ void bench(const BenchFlags& f) {
             row["operator"] = name;
             row["size"] = n;
             double gpu = 0, cpu = 0;
-            if (context) {
+            if (gpuRows) {
                 std::fprintf(stderr, "bench: %dx%d gpu %s...\n", n, n, name.c_str());
                 gl::GpuSimulator sim(s);
                 sim.setState(initial);
@@ -254,62 +269,76 @@ void bench(const BenchFlags& f) {
             std::printf("%-16s %-6d %14.1f %10.3f %14.1f %10.3f\n", name.c_str(), n, gpu,
                         gpuBase > 0 ? gpu / gpuBase : 0.0, cpu, cpuBase > 0 ? cpu / cpuBase : 0.0);
             std::fflush(stdout);
-            operatorRows.push_back(row);
+            rows.push_back(row);
         }
     }
-    report["operators"] = operatorRows;
+    return rows;
+}
 
-    if (!f.noConvergence) {
-        // Time to a converged pattern: flat explicit, semi-implicit at 5x
-        // the explicit dt, coarse-to-fine n/2 -> n (the large spots' ~14-cell
-        // wavelength is still resolved at n/2, not at n/4); on the backend
-        // `auto` picks (the faster one on this machine).
-        const int n = f.convergenceSize;
-        Session flat = loadPreset("turk_large_spots");
-        flat.width = flat.height = n;
-        gl::Backend backend =
-            gl::makeBackend(gl::BackendChoice::Auto, gl::parseContextFlag(f.context),
-                            gl::parseGpuDeviceFlag(f.gpuDevice));
-        std::fprintf(stderr, "bench: convergence on the %s\n", backend.reason.c_str());
-        Session semi = flat;
-        semi.integrator = Integrator::SemiImplicit;
-        semi.dt = 5 * flat.dt;
-        Session coarse = flat;
-        coarse.schedule = {{n / 2, n / 2, 0}, {n, n, 0}};
-        const double checkTime = 20.0; // simulated time between feature counts
-        std::printf("\n%-26s %10s %8s %10s %10s\n", "time to converged pattern", "seconds", "steps",
-                    "features", "vs flat");
-        nlohmann::json convergenceRows = nlohmann::json::array();
-        double flatSeconds = 0;
-        for (auto& [name, s] :
-             std::vector<std::pair<std::string, Session>>{{"flat explicit", flat},
-                                                          {"semi-implicit 5x dt", semi},
-                                                          {"coarse-to-fine", coarse}}) {
-            std::fprintf(stderr, "bench: %dx%d %s until the spot count settles...\n", n, n,
-                         name.c_str());
-            const Convergence c = timeToConverge(s, backend.makeSimulator, checkTime, 40000);
-            flatSeconds = flatSeconds > 0 ? flatSeconds : c.seconds;
-            std::printf("%-26s %10.2f %8d %10d %10.3f%s\n", name.c_str(), c.seconds, c.steps,
-                        c.features, c.seconds / flatSeconds, c.converged ? "" : " (not converged)");
-            std::fflush(stdout);
-            convergenceRows.push_back({{"method", name},
-                                       {"seconds", c.seconds},
-                                       {"steps", c.steps},
-                                       {"features", c.features},
-                                       {"converged", c.converged},
-                                       {"time_over_flat", c.seconds / flatSeconds}});
-        }
-        report["convergence"] = {{"preset", flat.name},
-                                 {"size", n},
-                                 {"backend", backend.reason},
-                                 {"rows", convergenceRows}};
+// Time to a converged pattern: flat explicit, semi-implicit at 5x the
+// explicit dt, coarse-to-fine n/2 -> n (the large spots' ~14-cell wavelength
+// is still resolved at n/2, not at n/4); on the backend `auto` picks (the
+// faster one on this machine).
+nlohmann::json convergenceRows(const BenchFlags& f) {
+    const int n = f.convergenceSize;
+    Session flat = loadPreset("turk_large_spots");
+    flat.width = flat.height = n;
+    gl::Backend backend = gl::makeBackend(gl::BackendChoice::Auto, gl::parseContextFlag(f.context),
+                                          gl::parseGpuDeviceFlag(f.gpuDevice));
+    std::fprintf(stderr, "bench: convergence on the %s\n", backend.reason.c_str());
+    Session semi = flat;
+    semi.integrator = Integrator::SemiImplicit;
+    semi.dt = 5 * flat.dt;
+    Session coarse = flat;
+    coarse.schedule = {{n / 2, n / 2, 0}, {n, n, 0}};
+    const double checkTime = 20.0; // simulated time between feature counts
+    std::printf("\n%-26s %10s %8s %10s %10s\n", "time to converged pattern", "seconds", "steps",
+                "features", "vs flat");
+    nlohmann::json rows = nlohmann::json::array();
+    double flatSeconds = 0;
+    for (auto& [name, s] : std::vector<std::pair<std::string, Session>>{
+             {"flat explicit", flat}, {"semi-implicit 5x dt", semi}, {"coarse-to-fine", coarse}}) {
+        std::fprintf(stderr, "bench: %dx%d %s until the spot count settles...\n", n, n,
+                     name.c_str());
+        const Convergence c = timeToConverge(s, backend.makeSimulator, checkTime, 40000);
+        flatSeconds = flatSeconds > 0 ? flatSeconds : c.seconds;
+        std::printf("%-26s %10.2f %8d %10d %10.3f%s\n", name.c_str(), c.seconds, c.steps,
+                    c.features, c.seconds / flatSeconds, c.converged ? "" : " (not converged)");
+        std::fflush(stdout);
+        rows.push_back({{"method", name},
+                        {"seconds", c.seconds},
+                        {"steps", c.steps},
+                        {"features", c.features},
+                        {"converged", c.converged},
+                        {"time_over_flat", c.seconds / flatSeconds}});
     }
-    if (!f.json.empty()) {
-        std::ofstream out(f.json);
-        if (!out)
-            throw InputError(f.json + ": cannot write the benchmark JSON");
-        out << report.dump(2) << "\n";
-    }
+    return {{"preset", flat.name}, {"size", n}, {"backend", backend.reason}, {"rows", rows}};
+}
+
+void writeJson(const std::string& path, const nlohmann::json& report) {
+    std::ofstream out(path);
+    if (!out)
+        throw InputError(path + ": cannot write the benchmark JSON");
+    out << report.dump(2) << "\n";
+}
+
+void bench(const BenchFlags& f) {
+    checkFlags(f);
+    const Session base = loadPreset(f.preset);
+    nlohmann::json report;
+    report["preset"] = base.name;
+    report["model"] = base.model;
+    report["seconds_per_measurement"] = f.seconds;
+    const std::unique_ptr<gl::Context> context = openContext(f, report);
+    const bool gpuRows = context != nullptr;
+
+    report["results"] = throughputRows(base, f, gpuRows);
+    report["operators"] = operatorRows(base, f, gpuRows);
+    // Rows of other domains (atlas, batched sweep) go here, one call each.
+    if (!f.noConvergence)
+        report["convergence"] = convergenceRows(f);
+    if (!f.json.empty())
+        writeJson(f.json, report);
 }
 
 } // namespace

@@ -10,11 +10,11 @@ namespace morphogen::cli {
 // The pieces of a render shared by `render` and `gallery`, so both produce the
 // same pixels and the same reproducing session for the same input.
 
-// Explicit steps: checks the spectral radius of I + dt A from the operator's
-// Fourier symbol; refuses (InputError) an operator that grows for every dt and
-// caps a dt above the limit, saying so on stderr (the written session records
-// the capped dt). `verbose` also reports a stable step and the semi-implicit
-// residual factor, which a batch of presets does not need.
+// The engine's checkSessionStability (core/sim/stability_check.hpp), its notes
+// printed on stderr: refuses (InputError) an operator that grows for every dt
+// and caps a dt above the limit (the written session records the capped dt).
+// `verbose` also reports a stable step and the semi-implicit residual factor,
+// which a batch of presets does not need.
 void checkStability(Session& session, bool verbose = true);
 
 // Steps per chunk of runSession: bounds how long Ctrl-C waits and how often

@@ -34,9 +34,7 @@ void CpuSimulator::applyBrush(const Brush& brush) {
             StepConstants k = withParamMap(session, m_k, brush.param);
             m_k = std::move(k);
             m_session = std::move(session);
-            m_explicitStep = fusedExplicitStep(m_model, m_k);
-            m_rhsPass = fusedRhsPass(m_model, m_k);
-            m_relax = fusedRelaxation(m_k);
+            pickKernels();
             m = mappedIndex(m_k, m_model, brush.param);
         }
         float* plane = m_k.paramMaps.plane(m);

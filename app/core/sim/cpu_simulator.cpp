@@ -146,17 +146,16 @@ void tensorMapRow(const DiffusionOperator& op, int c, const float* plane, int w,
 } // namespace
 
 CpuSimulator::CpuSimulator(const Session& session)
-    : m_model(session.reactionModel()), m_k(StepConstants::fromSession(session)),
+    : m_session(session), m_model(session.reactionModel()),
+      m_k(StepConstants::fromSession(session)),
       m_current(session.width, session.height, m_k.chemicals),
-      m_next(session.width, session.height, m_k.chemicals), m_session(session) {
+      m_next(session.width, session.height, m_k.chemicals) {
     // Its kernels wrap at the grid's edges, not at tile edges: sweeps run
     // each tile on its own CPU simulator instead (sweep.hpp: runTile).
     if (m_k.tiled())
         throw InputError("the cpu backend runs sweep tiles one by one, not a batched session; "
                          "use --backend gpu for a batched sweep session");
-    m_explicitStep = fusedExplicitStep(m_model, m_k);
-    m_rhsPass = fusedRhsPass(m_model, m_k);
-    m_relax = fusedRelaxation(m_k);
+    pickKernels();
 }
 
 void CpuSimulator::setState(const State& state) {
@@ -368,6 +367,29 @@ double CpuSimulator::lastSolveResidual() const {
                                               double(rhs[i])));
         }
     return worst;
+}
+
+void CpuSimulator::pickKernels() {
+    m_explicitStep = fusedExplicitStep(m_model, m_k);
+    m_rhsPass = fusedRhsPass(m_model, m_k);
+    m_relax = fusedRelaxation(m_k);
+}
+
+void CpuSimulator::setParams(const ParamValues& params) {
+    // Derived on a copy first: a refused change (InputError) leaves the run as it was.
+    Session next = m_session;
+    next.params = params;
+    updateLiveConstants(m_k, next);
+    m_session = std::move(next);
+    pickKernels();
+}
+
+void CpuSimulator::setDt(float dt) {
+    Session next = m_session;
+    next.dt = dt;
+    updateLiveConstants(m_k, next);
+    m_session = std::move(next);
+    pickKernels();
 }
 
 } // namespace morphogen

@@ -21,6 +21,8 @@ public:
     void run(int steps) override;
     void setFrozen(const std::vector<std::uint8_t>& frozen) override;
     void applyBrush(const Brush& brush) override; // cpu_brush.cpp
+    void setParams(const ParamValues& params) override;
+    void setDt(float dt) override;
 
     // Semi-implicit runs: max over cells of |(I - dt A) c' - (c + dt f(c))|
     // for the last step, i.e. how far the relaxation passes left the solve.
@@ -39,6 +41,12 @@ private:
     // The diffusion term of chemical c on row y, rate included.
     void diffusionRow(int c, const float* plane, int y, float* out) const;
 
+    // Picks the fused kernels for the current constants (a rate of 0 may
+    // need the generic path).
+    void pickKernels();
+
+    // As built, with live params and dt applied and painted parameters' maps added.
+    Session m_session;
     const ReactionModel& m_model;
     // Null where the generic path runs.
     StepRowsKernel m_explicitStep = nullptr;
@@ -50,7 +58,6 @@ private:
     State m_rhs;                              // SemiImplicit: c + dt f(c) of the step being solved
     std::vector<std::uint32_t> m_frozenCells; // indices of frozen cells (cascades)
     std::vector<std::uint8_t> m_frozenMask;   // the same cells as a mask (brush hold/release)
-    Session m_session; // the session with painted parameters' maps added (brushes)
 };
 
 } // namespace morphogen

@@ -1,5 +1,7 @@
 #include "core/sim/simulator.hpp"
 
+#include <cassert>
+
 #include "core/base/errors.hpp"
 #include "core/numerics/kernel_symbol.hpp"
 #include "core/session/param_map.hpp"
@@ -91,6 +93,31 @@ StepConstants StepConstants::fromSession(const Session& session) {
         }
     }
     return k;
+}
+
+bool updateLiveConstants(StepConstants& k, const Session& session) {
+    // The whole derivation again keeps one source of truth for every value;
+    // its cost is host work only (no GL), small next to a frame.
+    StepConstants fresh = StepConstants::fromSession(session);
+    assert(fresh.chemicals == k.chemicals && fresh.integrator == k.integrator);
+    // A 5x5 pass runs a kernel that shrank to 3x3 (zero outer taps) as it is;
+    // any other change of form needs another program.
+    using Form = DiffusionOperator::Form;
+    const bool sameForm = fresh.op.form == k.op.form ||
+                          (k.op.form == Form::Kernel5 && fresh.op.form == Form::Kernel3);
+    if (!sameForm) {
+        k = std::move(fresh);
+        return false;
+    }
+    k.dt = fresh.dt;
+    k.params = std::move(fresh.params);
+    k.op.rates = fresh.op.rates;
+    k.op.kernels = fresh.op.kernels;
+    k.op.mapCoefficients = fresh.op.mapCoefficients;
+    k.op.stabilization = fresh.op.stabilization;
+    k.omega = fresh.omega;
+    k.contraction = fresh.contraction;
+    return true;
 }
 
 } // namespace morphogen

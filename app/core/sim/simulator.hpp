@@ -77,6 +77,22 @@ public:
     // re-uploaded whole). Throws InputError for a brush the model rejects
     // (checkBrush), and leaves the simulation unchanged then.
     virtual void applyBrush(const Brush& brush) = 0;
+
+    // Live changes, in force from the next step, without a rebuild or a
+    // read-back: the GPU updates uniforms, the CPU its StepConstants.
+    // `params` holds every parameter of the model (Session::params); mapped
+    // parameters keep their per-cell maps. The caller validates the values.
+    virtual void setParams(const ParamValues& params) = 0;
+    virtual void setDt(float dt) = 0;
 };
+
+// The constants a live change of parameters or dt alters (params, dt, the
+// operator's rates, kernels and map coefficients, the semi-implicit weights),
+// recomputed for `session`, which differs from the one k was made from only in
+// params and dt. The operator's form, maps and integrator stay, and it returns
+// true; false when the new rates need another operator form (a generalized
+// kernel growing from 3x3 to 5x5 as a rate leaves 0): k is then replaced
+// whole and the backend must rebuild its step.
+bool updateLiveConstants(StepConstants& k, const Session& session);
 
 } // namespace morphogen

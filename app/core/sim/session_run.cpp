@@ -1,0 +1,306 @@
+#include "core/sim/session_run.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <sstream>
+
+#include "core/base/errors.hpp"
+#include "core/models/initial_condition.hpp"
+#include "core/numerics/resample.hpp"
+#include "core/operators/stability.hpp"
+#include "core/session/cascade.hpp"
+#include "core/sim/sweep.hpp"
+
+namespace morphogen {
+
+std::vector<Segment> segmentsOf(const Session& session) {
+    std::vector<Segment> segments;
+    Session base = session;
+    base.schedule.clear();
+    base.stages.clear();
+    if (!session.stages.empty()) {
+        for (const Stage& stage : session.stages) {
+            const bool newModel = !stage.model.empty();
+            if (newModel) {
+                // The new model starts from its own defaults, not the old model's values.
+                const ReactionModel& model = *findModel(stage.model);
+                base.model = stage.model;
+                base.params.clear();
+                for (const ParamSpec& p : model.params())
+                    base.params[p.name] = p.defaultValue;
+                base.init = stage.init ? *stage.init : model.defaultInit();
+                base.dt = model.defaultDt();
+                base.paramMaps.clear(); // sessionFromJson refuses maps with a model change
+            }
+            if (stage.dt)
+                base.dt = *stage.dt;
+            for (const auto& [name, value] : stage.params)
+                base.params[name] = value; // cumulative, as Turk's cascades change s
+            Segment segment{base, stage.freeze, stage.reset, newModel};
+            segment.session.steps = stage.steps;
+            segments.push_back(segment);
+        }
+        return segments;
+    }
+    std::vector<ScheduleLevel> levels = session.schedule;
+    if (levels.empty())
+        levels.push_back({session.width, session.height, session.steps});
+    for (const ScheduleLevel& level : levels) {
+        Segment segment{base, std::nullopt, {}, false};
+        segment.session.width = level.width;
+        segment.session.height = level.height;
+        segment.session.steps = level.steps;
+        segment.session.gridSpacing = double(session.width) / level.width;
+        segments.push_back(segment);
+    }
+    return segments;
+}
+
+SessionRun::SessionRun(const Session& session, SimulatorFactory makeSimulator, int checkEvery)
+    : m_session(session), m_make(std::move(makeSimulator)), m_checkEvery(std::max(0, checkEvery)),
+      m_segments(segmentsOf(session)), m_stateModel(&session.reactionModel()) {
+    enterSegment(0);
+}
+
+void SessionRun::enterSegment(std::size_t i) {
+    m_index = i;
+    m_stepsRun.push_back(0);
+    const Segment& segment = m_segments[i];
+    const Session& part = segment.session;
+    const ReactionModel& model = part.reactionModel();
+    if (i == 0)
+        // A batched sweep starts every tile from its own initial state.
+        m_state = isBatchedSweep(part) ? batchedInitialState(part)
+                                       : makeInitialState(part.init, model, part.params, part.width,
+                                                          part.height, part.seed);
+    else if (m_state.width() != part.width || m_state.height() != part.height)
+        m_state = resampleBilinear(m_state, part.width, part.height, part.edges);
+    // The rule reads the previous stage's result, with that stage's model.
+    if (segment.freeze)
+        m_frozen = applyFreezeRule(*segment.freeze, m_state, *m_stateModel, std::move(m_frozen));
+    if (segment.newModel && i > 0) {
+        // A new model: a fresh start of its own; only the frozen mask carries over.
+        m_state =
+            makeInitialState(part.init, model, part.params, part.width, part.height, part.seed);
+        m_stateModel = &model;
+    }
+    if (!segment.reset.empty() && !m_frozen.empty())
+        resetFrozenCells(m_state, m_frozen, segment.reset, model);
+
+    m_simulator.reset(); // a GPU simulator's textures go before the next one's are made
+    m_simulator = m_make(part);
+    m_simulator->setState(m_state);
+    m_simulator->setFrozen(m_frozen);
+    // Segments of no steps (a stage that only freezes or resets) are done as
+    // soon as they are entered.
+    if (part.steps == 0)
+        finishSegment(m_state);
+}
+
+void SessionRun::finishSegment(State state) {
+    m_state = std::move(state);
+    if (m_index + 1 < m_segments.size())
+        enterSegment(m_index + 1);
+    else
+        m_finished = true;
+}
+
+int SessionRun::segmentRemaining() const {
+    return m_finished ? 0 : m_segments[m_index].session.steps - m_stepsRun[m_index];
+}
+
+void SessionRun::checkBlowUp(const State& state, int before) const {
+    const Session& part = segmentSession();
+    auto problem = findInsaneValue(state, part.reactionModel());
+    if (!problem)
+        return;
+    const int done = m_stepsRun[m_index];
+    const float dt = suggestDt(part);
+    std::ostringstream os;
+    os << "the simulation blew up between step " << before + 1 << " and step " << done;
+    if (m_segments.size() > 1)
+        os << " of " << (m_session.stages.empty() ? "level " : "stage ") << m_index + 1;
+    os << " (" << *problem << ", backend " << m_simulator->backendName() << ", dt " << part.dt
+       << "); try a smaller time step such as --dt " << dt;
+    throw BlowUpError(os.str(), done, dt);
+}
+
+int SessionRun::advance(int steps) {
+    int run = 0;
+    while (run < steps && !m_finished) {
+        const int done = m_stepsRun[m_index];
+        const int length = m_segments[m_index].session.steps;
+        // Stop at the next blow-up check, as runSimulation's chunks do.
+        int n = std::min(steps - run, length - done);
+        if (m_checkEvery > 0)
+            n = std::min(n, m_checkEvery - done % m_checkEvery);
+        m_simulator->run(n);
+        m_stepsRun[m_index] += n;
+        m_stepsDone += n;
+        run += n;
+        const int now = m_stepsRun[m_index];
+        const bool end = now == length;
+        if (end || (m_checkEvery > 0 && now % m_checkEvery == 0)) {
+            State state = m_simulator->state();
+            const int before = m_checkEvery > 0 ? (now - 1) / m_checkEvery * m_checkEvery : 0;
+            checkBlowUp(state, before);
+            if (end)
+                finishSegment(std::move(state));
+        }
+    }
+    return run;
+}
+
+void SessionRun::endSegment() {
+    if (!m_finished)
+        finishSegment(m_simulator->state());
+}
+
+RunPosition SessionRun::position() const {
+    RunPosition p;
+    p.segment = int(m_index);
+    p.segments = int(m_segments.size());
+    p.segmentStep = m_stepsRun[m_index];
+    p.segmentSteps = m_segments[m_index].session.steps;
+    p.stepsDone = m_stepsDone;
+    for (const Segment& s : m_segments)
+        p.totalSteps += s.session.steps;
+    p.stages = !m_session.stages.empty();
+    p.finished = m_finished;
+    return p;
+}
+
+State SessionRun::state() const {
+    return m_finished ? m_state : m_simulator->state();
+}
+
+Session SessionRun::completed() const {
+    // What reproduces this state: the segments run, with the steps they ran.
+    Session done = m_session;
+    done.steps = m_stepsDone;
+    const std::size_t entered = m_stepsRun.size();
+    if (!m_session.schedule.empty()) {
+        done.schedule.resize(entered);
+        for (std::size_t i = 0; i < entered; ++i)
+            done.schedule[i].steps = m_stepsRun[i];
+        if (done.schedule.back().width != m_session.width ||
+            done.schedule.back().height != m_session.height)
+            done.schedule.push_back({m_session.width, m_session.height, 0});
+    }
+    if (!m_session.stages.empty()) {
+        done.stages.resize(entered);
+        for (std::size_t i = 0; i < entered; ++i) {
+            done.stages[i].steps = m_stepsRun[i];
+            // Live changes: a value in force that differs from what the stage
+            // would inherit is written into it.
+            const Session& part = m_segments[i].session;
+            ParamValues inherited = i == 0 ? m_session.params : m_segments[i - 1].session.params;
+            float inheritedDt = i == 0 ? m_session.dt : m_segments[i - 1].session.dt;
+            if (m_segments[i].newModel) {
+                inherited.clear();
+                for (const ParamSpec& p : part.reactionModel().params())
+                    inherited[p.name] = p.defaultValue;
+                inheritedDt = part.reactionModel().defaultDt();
+            }
+            if (part.dt != inheritedDt || done.stages[i].dt)
+                done.stages[i].dt = part.dt;
+            for (const auto& [name, value] : part.params) {
+                auto it = inherited.find(name);
+                if (it == inherited.end() || it->second != value ||
+                    done.stages[i].params.count(name))
+                    done.stages[i].params[name] = value;
+            }
+        }
+    } else {
+        // Levels share their parameters and dt (setParams/setDt change the
+        // current level and those after it).
+        done.params = segmentSession().params;
+        done.dt = segmentSession().dt;
+    }
+    return done;
+}
+
+RunResult SessionRun::result() const {
+    RunResult r;
+    r.stepsDone = m_stepsDone;
+    r.state = state();
+    // A run stopped on a coarse level leaves a coarse state: bring it to the final size.
+    if (r.state.width() != m_session.width || r.state.height() != m_session.height)
+        r.state = resampleBilinear(r.state, m_session.width, m_session.height, m_session.edges);
+    r.completed = completed();
+    return r;
+}
+
+void SessionRun::setParams(const ParamValues& params) {
+    if (m_finished)
+        return;
+    Session& part = m_segments[m_index].session;
+    const ReactionModel& model = part.reactionModel();
+    for (const auto& [name, value] : params) {
+        const ParamSpec* p = model.param(name);
+        if (!p)
+            throw InputError("parameter '" + name + "' is not a parameter of model '" +
+                             model.name() + "' (accepted: " + model.paramNames() + ")");
+        if (!std::isfinite(value) || value < p->min || value > p->max) {
+            std::ostringstream os;
+            os << "parameter " << name << " = " << value << " is outside [" << p->min << ", "
+               << p->max << "]";
+            throw InputError(os.str());
+        }
+    }
+    ParamValues merged = part.params;
+    for (const auto& [name, value] : params)
+        merged[name] = value;
+    m_simulator->setParams(merged);
+    part.params = merged;
+    if (m_session.stages.empty())
+        for (std::size_t i = m_index + 1; i < m_segments.size(); ++i)
+            m_segments[i].session.params = merged;
+}
+
+void SessionRun::setDt(float dt) {
+    if (!(dt > 0) || !std::isfinite(dt)) {
+        std::ostringstream os;
+        os << "dt " << dt << " is not a positive time step";
+        throw InputError(os.str());
+    }
+    if (m_finished)
+        return;
+    m_simulator->setDt(dt);
+    for (std::size_t i = m_index; i < m_segments.size(); ++i)
+        if (i == m_index || m_session.stages.empty())
+            m_segments[i].session.dt = dt;
+}
+
+void SessionRun::replaceSession(const Session& session) {
+    if (m_finished)
+        return;
+    Segment& segment = m_segments[m_index];
+    const ReactionModel& now = segment.session.reactionModel();
+    const ReactionModel& next = session.reactionModel();
+    if (session.width != segment.session.width || session.height != segment.session.height)
+        throw InputError("the replacement session is " + std::to_string(session.width) + " x " +
+                         std::to_string(session.height) + "; the run's grid is " +
+                         std::to_string(segment.session.width) + " x " +
+                         std::to_string(segment.session.height));
+    if (next.chemicalNames() != now.chemicalNames())
+        throw InputError("model '" + next.name() + "' has chemicals " + next.chemicalNames() +
+                         "; the run's state holds " + now.chemicalNames());
+    Session part = session;
+    part.steps = segment.session.steps;
+    part.gridSpacing = segment.session.gridSpacing;
+    part.schedule.clear();
+    part.stages.clear();
+    // The new simulator is built before the old one goes, so a refused
+    // session (InputError) leaves the run as it was.
+    const State state = m_simulator->state();
+    std::unique_ptr<Simulator> simulator = m_make(part);
+    simulator->setState(state);
+    simulator->setFrozen(m_frozen);
+    m_simulator = std::move(simulator);
+    segment.session = part;
+    m_stateModel = &next;
+}
+
+} // namespace morphogen

@@ -1,0 +1,116 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/sim/runner.hpp"
+
+namespace morphogen {
+
+// One segment of a session: a schedule level or a cascade stage.
+struct Segment {
+    Session session; // its model, size, steps, params, dt and grid spacing
+    std::optional<FreezeRule> freeze;
+    std::map<std::string, float> reset;
+    bool newModel = false; // starts session.model afresh from session.init
+};
+
+// The segments a session runs, in order (one for a plain session).
+std::vector<Segment> segmentsOf(const Session& session);
+
+// Where a SessionRun is. At a boundary it reports the next segment at step 0
+// (that segment's freeze, reset or model change already applied).
+struct RunPosition {
+    int segment = 0;       // stage or level index
+    int segments = 1;      // how many the session has
+    int segmentStep = 0;   // steps done in the current segment
+    int segmentSteps = 0;  // the current segment's length
+    int stepsDone = 0;     // over all segments
+    int totalSteps = 0;    // over all segments
+    bool stages = false;   // the segments are cascade stages (else schedule levels)
+    bool finished = false; // every segment has run all its steps
+};
+
+// A session advanced step by step: cascade stages and schedule levels are
+// positions in it, so a batch render, the bench and an interactive frame loop
+// run the same code with the same results. Between advances a caller may read
+// the position, change parameters or dt live (setParams/setDt: no rebuild),
+// swap in an edited session (replaceSession: a rebuild that keeps the state),
+// stop and resume. The state stays in the simulator; state() reads it back.
+class SessionRun {
+public:
+    // Enters the first segment: its simulator is made and holds the initial
+    // state. checkEvery: steps between blow-up checks, counted from each
+    // segment's start as runSimulation's chunks (a check reads the state
+    // back); 0 checks only at segment ends.
+    SessionRun(const Session& session, SimulatorFactory makeSimulator, int checkEvery = 250);
+
+    // Runs up to `steps` steps (fewer when the session ends), across segment
+    // boundaries; returns the steps run. Throws BlowUpError as runSimulation
+    // does, naming the stage or level when there are several.
+    int advance(int steps);
+    // Ends the current segment now (its steps so far are what it ran) and
+    // enters the next; at the last one, the run is finished.
+    void endSegment();
+
+    bool finished() const { return m_finished; }
+    RunPosition position() const;
+    // Steps left in the current segment.
+    int segmentRemaining() const;
+
+    // The current segment's simulator (for live changes and display) and the
+    // session it runs as.
+    Simulator& simulator() { return *m_simulator; }
+    const Session& segmentSession() const { return m_segments[m_index].session; }
+
+    // Reads the current state back (at the current segment's size).
+    State state() const;
+    // The session that reproduces the steps run so far (each stage or level
+    // with the steps it ran). Live parameter and dt changes are recorded as
+    // the values in force at the end of each stage (of the current level for a
+    // schedule), not as the moment they happened; a replaceSession's other
+    // changes (operator, model) are not recorded.
+    Session completed() const;
+    // completed() and the state, resampled to the session's final size when a
+    // run stopped on a coarse level.
+    RunResult result() const;
+
+    // Live changes to the current segment, from the next step on: the
+    // simulator updates its constants (uniforms on the GPU, no rebuild).
+    // Parameters missing from `params` keep their values; unknown names or
+    // values outside a parameter's range throw InputError. Schedule levels
+    // after the current one take the change too; later cascade stages do not
+    // (each runs as its session says).
+    void setParams(const ParamValues& params);
+    void setDt(float dt);
+
+    // Rebuilds the current segment's simulator for `session` (an operator or
+    // model change) and carries the state over, with the frozen cells. The
+    // session must have the segment's size and a model with the same
+    // chemicals; its steps are ignored (the segment keeps its length).
+    void replaceSession(const Session& session);
+
+private:
+    void enterSegment(std::size_t index);
+    void checkBlowUp(const State& state, int before) const;
+    void finishSegment(State state);
+
+    Session m_session;
+    SimulatorFactory m_make;
+    int m_checkEvery;
+    std::vector<Segment> m_segments;
+    std::size_t m_index = 0;
+    std::vector<int> m_stepsRun; // per segment entered
+    int m_stepsDone = 0;
+    bool m_finished = false;
+    std::unique_ptr<Simulator> m_simulator;
+    State m_state; // the state between segments (the simulator holds it inside one)
+    std::vector<std::uint8_t> m_frozen;
+    const ReactionModel* m_stateModel = nullptr; // the model m_state holds
+};
+
+} // namespace morphogen
