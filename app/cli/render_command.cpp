@@ -3,13 +3,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "cli/backend.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
 #include "core/output/colormap.hpp"
+#include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
 #include "core/models/initial_condition.hpp"
@@ -52,6 +55,16 @@ struct RenderFlags {
     std::string levels;
     int bitDepth = 8;
 };
+
+// An enumeration's name given to `flag`; throws InputError listing `accepted`.
+template <class E>
+E parseFlag(const std::string& flag, const std::string& text,
+            std::optional<E> (*parse)(std::string_view), const std::string& accepted) {
+    const std::optional<E> value = parse(text);
+    if (!value)
+        throw InputError(flag + " '" + text + "' is unknown (accepted: " + accepted + ")");
+    return *value;
+}
 
 void parseSize(const std::string& text, Session& s);
 
@@ -115,15 +128,8 @@ Session buildSession(const RenderFlags& f) {
         parseSize(f.size, s);
     if (f.steps >= 0)
         applySteps(s, f.steps, "--steps");
-    if (!f.integrator.empty()) {
-        if (f.integrator == "explicit_euler")
-            s.integrator = Integrator::ExplicitEuler;
-        else if (f.integrator == "semi_implicit")
-            s.integrator = Integrator::SemiImplicit;
-        else
-            throw InputError("--integrator '" + f.integrator +
-                             "' is unknown (accepted: explicit_euler, semi_implicit)");
-    }
+    if (!f.integrator.empty())
+        s.integrator = parseFlag("--integrator", f.integrator, parseIntegrator, integratorNames());
     if (f.relaxationPasses != -1) {
         if (f.relaxationPasses < 1 || f.relaxationPasses > 1000)
             throw InputError("--relaxation-passes " + std::to_string(f.relaxationPasses) +
@@ -138,25 +144,16 @@ Session buildSession(const RenderFlags& f) {
         throw InputError("--dt must be positive");
     for (const std::string& p : f.params)
         applyParamOverride(s, p);
-    if (!f.edges.empty()) {
-        if (f.edges == "periodic")
-            s.edges = EdgeMode::Periodic;
-        else if (f.edges == "clamped")
-            s.edges = EdgeMode::Clamped;
-        else
-            throw InputError("--edges '" + f.edges + "' is unknown (accepted: periodic, clamped)");
-    }
+    if (!f.edges.empty())
+        s.edges = parseFlag("--edges", f.edges, parseEdgeMode, edgeModeNames());
     if (!f.stencil.empty()) {
         if (s.diffusion.type != DiffusionType::Isotropic)
             throw InputError("--stencil applies to isotropic diffusion only; this session's is " +
                              toString(s.diffusion.type));
-        if (f.stencil == "5-point" || f.stencil == "5")
-            s.diffusion.stencil = Stencil::FivePoint;
-        else if (f.stencil == "9-point" || f.stencil == "9")
-            s.diffusion.stencil = Stencil::NinePoint;
-        else
-            throw InputError("--stencil '" + f.stencil +
-                             "' is unknown (accepted: 5-point, 9-point)");
+        // The flag also takes the short "5" and "9"; sessions spell them out.
+        const std::string stencil =
+            f.stencil == "5" || f.stencil == "9" ? f.stencil + "-point" : f.stencil;
+        s.diffusion.stencil = parseFlag("--stencil", stencil, parseStencil, stencilNames());
     }
     if (!f.colormap.empty())
         s.colormap.name = f.colormap;
@@ -266,8 +263,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option(
         "--context", flags->context,
         "GL context: egl or osmesa (default: $MORPHOGEN_CONTEXT, else egl then osmesa)");
-    cmd->add_option("--colormap", flags->colormap,
-                    "grey, two-colour, viridis, magma, inferno, coolwarm");
+    cmd->add_option("--colormap", flags->colormap, joinNames(colormapNames()));
     cmd->add_option("--chemical", flags->chemical, "chemical to show (default: the model's)");
     cmd->add_option("--levels", flags->levels,
                     "LOW:HIGH window on the min-max normalised value (default 0:1)");

@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -62,6 +64,20 @@ public:
         if (!j->is_string())
             failField(key, "must be a string, got " + typeName(*j));
         return j->get<std::string>();
+    }
+
+    // A string naming one value of an enumeration: `parse` reads the names,
+    // `accepted` lists them for the error.
+    template <class E>
+    E choice(const std::string& key, E fallback, std::optional<E> (*parse)(std::string_view),
+             const std::string& accepted) const {
+        if (!find(key))
+            return fallback;
+        const std::string name = string(key, "");
+        const std::optional<E> value = parse(name);
+        if (!value)
+            failField(key, "is '" + name + "', accepted: " + accepted);
+        return *value;
     }
 
     double number(const std::string& key, double fallback, double min, double max) const {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/embedded_files.hpp"
+#include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/json_fields.hpp"
 
@@ -17,12 +18,23 @@ namespace morphogen {
 
 using nlohmann::json;
 
+namespace {
+
+const EnumName<Integrator> kIntegrators[] = {{Integrator::ExplicitEuler, "explicit_euler"},
+                                             {Integrator::SemiImplicit, "semi_implicit"}};
+
+} // namespace
+
 std::string toString(Integrator integrator) {
-    return integrator == Integrator::ExplicitEuler ? "explicit_euler" : "semi_implicit";
+    return nameOf(kIntegrators, integrator);
 }
 
-std::string toString(EdgeMode mode) {
-    return mode == EdgeMode::Periodic ? "periodic" : "clamped";
+std::optional<Integrator> parseIntegrator(std::string_view name) {
+    return valueNamed(kIntegrators, name);
+}
+
+std::string integratorNames() {
+    return nameList(kIntegrators);
 }
 
 const ReactionModel& Session::reactionModel() const {
@@ -95,27 +107,14 @@ Session sessionFromJson(const json& root, const std::string& source) {
         }
     }
 
-    const std::string edges = top.string("edges", "periodic");
-    if (edges == "periodic")
-        s.edges = EdgeMode::Periodic;
-    else if (edges == "clamped")
-        s.edges = EdgeMode::Clamped;
-    else
-        top.failField("edges", "is '" + edges + "', accepted: periodic, clamped");
+    s.edges = top.choice("edges", s.edges, parseEdgeMode, edgeModeNames());
 
     // Like "init", a session's "diffusion" replaces the model's default whole.
     s.diffusion = model->defaultDiffusion();
     if (const json* diffusion = top.find("diffusion"))
         s.diffusion = diffusionFromJson(*diffusion, source, *model);
 
-    const std::string integrator = top.string("integrator", "explicit_euler");
-    if (integrator == "explicit_euler")
-        s.integrator = Integrator::ExplicitEuler;
-    else if (integrator == "semi_implicit")
-        s.integrator = Integrator::SemiImplicit;
-    else
-        top.failField("integrator",
-                      "is '" + integrator + "', accepted: explicit_euler, semi_implicit");
+    s.integrator = top.choice("integrator", s.integrator, parseIntegrator, integratorNames());
     // "jacobi_sweeps" is the name sessions written before the rename use.
     s.relaxationPasses = int(top.integer("jacobi_sweeps", s.relaxationPasses, 1, 1000));
     s.relaxationPasses = int(top.integer("relaxation_passes", s.relaxationPasses, 1, 1000));
