@@ -1,5 +1,3 @@
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +7,7 @@
 
 #include "cli/backend.hpp"
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
 #include "core/output/colormap.hpp"
@@ -24,14 +23,6 @@ namespace morphogen::cli {
 namespace {
 
 constexpr const char* kDefaultPreset = "gs_coral";
-
-std::atomic<bool> g_interrupted{false};
-
-extern "C" void onInterrupt(int) {
-    g_interrupted.store(true);
-    // A second Ctrl-C ends the process the usual way.
-    std::signal(SIGINT, SIG_DFL);
-}
 
 struct RenderFlags {
     std::string preset;
@@ -200,22 +191,17 @@ void render(const RenderFlags& f) {
     Backend backend = makeBackend(parseBackendChoice(f.backend), parseContextFlag(f.context));
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
 
-    g_interrupted.store(false);
-    auto previous = std::signal(SIGINT, onInterrupt);
     Progress progress("render " + (session.name.empty() ? std::string("session") : session.name),
                       session.steps);
-    RunOptions options;
-    options.progress = [&](int done, int) { progress.update(done); };
-    options.cancel = &g_interrupted;
-    options.chunk = runChunk(session);
     RunResult result;
-    try {
+    {
+        const InterruptGuard interrupt;
+        RunOptions options;
+        options.progress = [&](int done, int) { progress.update(done); };
+        options.cancel = interrupt.flag();
+        options.chunk = runChunk(session);
         result = runSession(session, backend.makeSimulator, options);
-    } catch (...) {
-        std::signal(SIGINT, previous);
-        throw;
     }
-    std::signal(SIGINT, previous);
 
     if (result.cancelled) {
         progress.finish("interrupted after " + std::to_string(result.stepsDone) +
