@@ -47,9 +47,7 @@ void map(const MapFlags& f) {
     if (f.size < 16 || f.size > kMaxGridSide)
         throw InputError("--size " + std::to_string(f.size) + ": accepted are 16.." +
                          std::to_string(kMaxGridSide));
-    // Seed spots keep their density as the map grows, so every region starts.
-    if (s.init.type == InitialCondition::Type::SeedSpots && f.preset.empty())
-        s.init.spotCount = std::max(1, int(20.0 * f.size * f.size / (256.0 * 256.0)));
+    keepSeedSpotDensity(s, f.size, !f.preset.empty());
     s.width = s.height = f.size;
     s.schedule.clear();
     if (f.steps >= 0)

@@ -199,9 +199,7 @@ void sweep(const SweepFlags& f) {
         throw InputError("--grid " + f.grid + " of --tile " + std::to_string(f.tile) + " exceeds " +
                          std::to_string(kMaxGridSide) + " cells per side");
     Session& base = spec.base;
-    // As in `map`: seed spots keep their density at the tile's size.
-    if (base.init.type == InitialCondition::Type::SeedSpots && f.preset.empty())
-        base.init.spotCount = std::max(1, int(20.0 * f.tile * f.tile / (256.0 * 256.0)));
+    keepSeedSpotDensity(base, f.tile, !f.preset.empty());
     base.width = base.height = spec.tile;
     base.schedule.clear();
     base.stages.clear();
