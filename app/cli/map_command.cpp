@@ -3,6 +3,7 @@
 // Gray-Scott F-k map, McGraw's Fig. 6 with a generalized tensor, for any
 // model and any two of its parameters.
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -10,7 +11,7 @@
 #include "cli/backend.hpp"
 #include "cli/commands.hpp"
 #include "cli/exploration.hpp"
-#include "cli/plot_text.hpp"
+#include "cli/plot_frame.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
 #include "core/output/colormap.hpp"
@@ -37,6 +38,18 @@ struct MapFlags {
     std::string context;
     std::string colormap;
 };
+
+// Ticks at "nice" values of a parameter swept over `cells` cells: cell i holds
+// min + (max - min) i / (cells - 1), and its tick sits on that cell. `upwards`:
+// the values grow from the bottom (a y axis), whose pixel rows count down.
+PlotAxis linearAxis(const SweepAxis& axis, int cells, int maxTicks, bool upwards) {
+    PlotAxis plotAxis{axis.param, {}};
+    for (const auto& [value, label] : axisTicks(axis.min, axis.max, maxTicks)) {
+        const int cell = int(std::lround((value - axis.min) / (axis.max - axis.min) * (cells - 1)));
+        plotAxis.ticks.emplace_back(upwards ? cells - 1 - cell : cell, label);
+    }
+    return plotAxis;
+}
 
 void map(const MapFlags& f) {
     Session s = explorationBase(f.model, f.preset, "map");
@@ -81,51 +94,19 @@ void map(const MapFlags& f) {
     const RunResult result = runSession(s, backend.makeSimulator, options);
     progress.finish("done: " + std::to_string(result.stepsDone) + " steps");
 
-    // The plot: the map with the y axis on the left, the x axis below; wide
-    // enough for the title on small maps.
-    const std::vector<std::pair<double, std::string>> yTicks = axisTicks(y.min, y.max);
-    int widestY = 0;
-    for (const auto& tick : yTicks)
-        widestY = std::max(widestY, textWidth(tick.second));
-    // The y name, a gap, the tick labels, the tick marks.
-    const int left = std::max(64, 8 + textWidth(y.param) + 6 + widestY + 7);
-    const int bottom = 44, top = 28, right = 24;
-    const std::string title = model.name() + ": " + x.param + " (x) vs " + y.param + " (y), " +
-                              std::to_string(result.stepsDone) + " steps";
-    Canvas canvas(std::max(f.size + left + right, left + textWidth(title) + right),
-                  f.size + top + bottom, 1.0f);
-    canvas.paste(applyColormap(result.state, colormapChemical(s.colormap, model), s.colormap),
-                 f.size, f.size, left, top);
-    const float ink[3] = {0.1f, 0.1f, 0.1f};
     // Fewer x ticks until their labels no longer touch (small maps, long labels).
-    std::vector<std::pair<double, std::string>> xTicks;
+    PlotAxis xAxis;
     for (int count = 6; count >= 2; --count) {
-        xTicks = axisTicks(x.min, x.max, count);
-        int widest = 0;
-        for (const auto& tick : xTicks)
-            widest = std::max(widest, textWidth(tick.second));
-        const double spacing = xTicks.size() < 2 ? f.size
-                                                 : (xTicks[1].first - xTicks[0].first) /
-                                                       (x.max - x.min) * (f.size - 1);
-        if (spacing >= widest + 6)
+        xAxis = linearAxis(x, f.size, count, false);
+        if (xLabelStride(xAxis) == 1)
             break;
     }
-    for (const auto& [value, label] : xTicks) {
-        // Cell i holds min + (max - min) i / (W - 1): the tick sits on that cell.
-        const int px = left + int(std::lround((value - x.min) / (x.max - x.min) * (f.size - 1)));
-        canvas.fillRect(px, top + f.size, px + 1, top + f.size + 5, ink);
-        drawText(canvas, px - textWidth(label) / 2, top + f.size + 7, label, ink);
-    }
-    for (const auto& [value, label] : yTicks) {
-        const int py =
-            top + f.size - 1 - int(std::lround((value - y.min) / (y.max - y.min) * (f.size - 1)));
-        canvas.fillRect(left - 5, py, left, py + 1, ink);
-        drawText(canvas, left - 7 - textWidth(label), py - kTextHeight / 2, label, ink);
-    }
-    drawText(canvas, left + f.size / 2 - textWidth(x.param) / 2, top + f.size + 24, x.param, ink);
-    drawText(canvas, 8, top + f.size / 2 - kTextHeight / 2, y.param, ink);
-    drawText(canvas, left, 8, title, ink);
-    writeRgbImage(f.out, canvas.rgb, canvas.width, canvas.height, 8);
+    const std::string title = model.name() + ": " + x.param + " (x) vs " + y.param + " (y), " +
+                              std::to_string(result.stepsDone) + " steps";
+    PlotFrame plot = drawPlotFrame(f.size, f.size, xAxis, linearAxis(y, f.size, 6, true), title);
+    plot.canvas.paste(applyColormap(result.state, colormapChemical(s.colormap, model), s.colormap),
+                      f.size, f.size, plot.left, plot.top);
+    writeRgbImage(f.out, plot.canvas.rgb, plot.canvas.width, plot.canvas.height, 8);
 
     Session done = result.completed;
     std::filesystem::path sessionPath(f.out);
