@@ -51,11 +51,21 @@ PlotAxis linearAxis(const SweepAxis& axis, int cells, int maxTicks, bool upwards
     return plotAxis;
 }
 
-void map(const MapFlags& f) {
-    Session s = explorationBase(f.model, f.preset, "map");
+// What a map runs: the session, with x and y as parameter maps over the grid.
+struct MapPlan {
+    Session session;
+    SweepAxis x, y;
+};
+
+// Reads and checks the flags; throws InputError before anything runs.
+MapPlan planMap(const MapFlags& f) {
+    MapPlan plan;
+    Session& s = plan.session;
+    s = explorationBase(f.model, f.preset, "map");
     const ReactionModel& model = s.reactionModel();
-    const SweepAxis x = parseAxis("--x", f.x, model), y = parseAxis("--y", f.y, model);
-    if (x.param == y.param)
+    plan.x = parseAxis("--x", f.x, model);
+    plan.y = parseAxis("--y", f.y, model);
+    if (plan.x.param == plan.y.param)
         throw InputError("--x and --y must sweep different parameters");
     if (f.size < 16 || f.size > kMaxGridSide)
         throw InputError("--size " + std::to_string(f.size) + ": accepted are 16.." +
@@ -78,40 +88,51 @@ void map(const MapFlags& f) {
     if (!f.colormap.empty())
         s.colormap.name = f.colormap;
     checkColormapName(s.colormap.name);
-    s.paramMaps[x.param] = {ParamMapSpec::Field::LinearX, x.min, x.max};
-    s.paramMaps[y.param] = {ParamMapSpec::Field::LinearY, y.min, y.max};
+    s.paramMaps[plan.x.param] = {ParamMapSpec::Field::LinearX, plan.x.min, plan.x.max};
+    s.paramMaps[plan.y.param] = {ParamMapSpec::Field::LinearY, plan.y.min, plan.y.max};
     validateSession(s, "map");
     imageFormatForPath(f.out);
     checkWritable(f.out);
     checkStability(s, false);
+    return plan;
+}
 
+// The map with the y axis on the left, the x axis below and a title.
+void writeMapPlot(const std::string& path, const MapPlan& plan, const RunResult& result) {
+    const Session& s = plan.session;
+    const ReactionModel& model = s.reactionModel();
+    // Fewer x ticks until their labels no longer touch (small maps, long labels).
+    PlotAxis xAxis;
+    for (int count = 6; count >= 2; --count) {
+        xAxis = linearAxis(plan.x, s.width, count, false);
+        if (xLabelStride(xAxis) == 1)
+            break;
+    }
+    const std::string title = model.name() + ": " + plan.x.param + " (x) vs " + plan.y.param +
+                              " (y), " + std::to_string(result.stepsDone) + " steps";
+    PlotFrame plot =
+        drawPlotFrame(s.width, s.height, xAxis, linearAxis(plan.y, s.height, 6, true), title);
+    plot.canvas.paste(applyColormap(result.state, colormapChemical(s.colormap, model), s.colormap),
+                      s.width, s.height, plot.left, plot.top);
+    writeRgbImage(path, plot.canvas.rgb, plot.canvas.width, plot.canvas.height, 8);
+}
+
+void map(const MapFlags& f) {
+    const MapPlan plan = planMap(f);
+    const Session& s = plan.session;
     Backend backend = makeBackend(parseBackendChoice(f.backend), parseContextFlag(f.context));
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
-    Progress progress("map " + x.param + " x " + y.param, s.steps);
+    Progress progress("map " + plan.x.param + " x " + plan.y.param, s.steps);
     RunOptions options;
     options.chunk = runChunk(s);
     options.progress = [&](int done, int) { progress.update(done); };
     const RunResult result = runSession(s, backend.makeSimulator, options);
     progress.finish("done: " + std::to_string(result.stepsDone) + " steps");
 
-    // Fewer x ticks until their labels no longer touch (small maps, long labels).
-    PlotAxis xAxis;
-    for (int count = 6; count >= 2; --count) {
-        xAxis = linearAxis(x, f.size, count, false);
-        if (xLabelStride(xAxis) == 1)
-            break;
-    }
-    const std::string title = model.name() + ": " + x.param + " (x) vs " + y.param + " (y), " +
-                              std::to_string(result.stepsDone) + " steps";
-    PlotFrame plot = drawPlotFrame(f.size, f.size, xAxis, linearAxis(y, f.size, 6, true), title);
-    plot.canvas.paste(applyColormap(result.state, colormapChemical(s.colormap, model), s.colormap),
-                      f.size, f.size, plot.left, plot.top);
-    writeRgbImage(f.out, plot.canvas.rgb, plot.canvas.width, plot.canvas.height, 8);
-
-    Session done = result.completed;
+    writeMapPlot(f.out, plan, result);
     std::filesystem::path sessionPath(f.out);
     sessionPath.replace_extension(".json");
-    saveSessionFile(done, sessionPath.string());
+    saveSessionFile(result.completed, sessionPath.string());
     std::printf("%s\n%s\n", f.out.c_str(), sessionPath.string().c_str());
 }
 
