@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 
 namespace morphogen {
@@ -47,13 +48,11 @@ public:
     void rejectUnknown(std::initializer_list<const char*> known) const {
         for (auto it = m_object.begin(); it != m_object.end(); ++it) {
             bool ok = false;
-            std::string list;
-            for (const char* k : known) {
+            for (const char* k : known)
                 ok = ok || it.key() == k;
-                list += (list.empty() ? "" : ", ") + std::string(k);
-            }
             if (!ok)
-                fail("unknown field '" + path(it.key()) + "'", "(accepted: " + list + ")");
+                fail("unknown field '" + path(it.key()) + "'",
+                     "(accepted: " + joinNames(known) + ")");
         }
     }
 
