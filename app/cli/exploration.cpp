@@ -1,5 +1,6 @@
 #include "cli/exploration.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <sstream>
 
@@ -55,6 +56,14 @@ Session explorationBase(const std::string& modelName, const std::string& preset,
     s.steps = 10000;
     s.colormap.name = "viridis";
     return s;
+}
+
+void keepSeedSpotDensity(Session& s, int side, bool fromPreset) {
+    if (fromPreset || s.init.type != InitialCondition::Type::SeedSpots)
+        return;
+    const Session defaults; // the grid a model's default start is made for
+    s.init.spotCount = std::max(1, int(double(s.init.spotCount) * side * side /
+                                       (double(defaults.width) * defaults.height)));
 }
 
 } // namespace morphogen::cli

@@ -18,4 +18,9 @@ SweepAxis parseAxis(const std::string& flag, const std::string& text, const Reac
 Session explorationBase(const std::string& model, const std::string& preset,
                         const std::string& name);
 
+// A model's default seed-spot start, about to run on side x side cells, keeps
+// the spot density it has on the default grid, so every region of a large
+// map or tile starts; a preset's start (`fromPreset`) is left as its author made it.
+void keepSeedSpotDensity(Session& s, int side, bool fromPreset);
+
 } // namespace morphogen::cli

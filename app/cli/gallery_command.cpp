@@ -1,8 +1,6 @@
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +9,7 @@
 #include <unistd.h>
 
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
 #include "core/base/errors.hpp"
@@ -24,19 +23,6 @@ namespace morphogen::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::atomic<bool> g_galleryInterrupted{false};
-
-extern "C" void onGalleryInterrupt(int) {
-    g_galleryInterrupted.store(true);
-    // Only async-signal-safe calls here: write(2), not stdio.
-    static const char message[] =
-        "\nmorphogen: interrupted: finishing the current preset, then writing index.html "
-        "(Ctrl-C again to quit now)\n";
-    [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, message, sizeof message - 1);
-    // A second Ctrl-C ends the process the usual way.
-    std::signal(SIGINT, SIG_DFL);
-}
 
 struct GalleryFlags {
     std::string dir;
@@ -261,6 +247,48 @@ a { color: #8cf; }
     fs::rename(tmp, path);
 }
 
+// Runs one preset and writes its image and session; a failure is recorded in
+// the entry, not thrown, so the other presets still run.
+Entry runPreset(const Session& preset, const GalleryFlags& f, const gl::Backend& backend,
+                const std::string& label, bool tty) {
+    Entry entry;
+    entry.session = preset;
+    const auto start = std::chrono::steady_clock::now();
+    std::optional<Progress> progress;
+    try {
+        applyOverrides(entry.session, f);
+        checkStability(entry.session, false);
+        // A redrawn progress line only where it helps: a terminal, and a
+        // run long enough (~1e9 cell updates) to wait for.
+        if (tty && double(entry.session.width) * entry.session.height * entry.session.steps >= 1e9)
+            progress.emplace(label, entry.session.steps);
+        RunOptions options;
+        options.chunk = runChunk(entry.session);
+        if (progress)
+            options.progress = [&](int done, int) { progress->update(done); };
+        // No cancel: Ctrl-C lets the current preset finish, so every
+        // image on the page is the preset's full run.
+        RunResult result = runSession(entry.session, backend.makeSimulator, options);
+        entry.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const fs::path base = fs::path(f.dir) / entry.session.name;
+        writeRenderOutput(result, base.string() + ".png", base.string() + ".json", 8);
+        entry.session = result.completed;
+    } catch (const std::exception& e) {
+        entry.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        entry.error = e.what();
+    }
+    const std::string summary =
+        sizeText(entry.session, " -> ") + " ... " +
+        (entry.error.empty() ? seconds(entry.seconds) : "FAILED: " + entry.error);
+    if (progress)
+        progress->finish(summary);
+    else
+        std::fprintf(stderr, "%s %s\n", label.c_str(), summary.c_str());
+    return entry;
+}
+
 void gallery(const GalleryFlags& f) {
     if (f.size != -1 && (f.size < 1 || f.size > kMaxGridSide))
         throw InputError("--size " + std::to_string(f.size) + ": accepted are 1.." +
@@ -276,53 +304,19 @@ void gallery(const GalleryFlags& f) {
     gl::Backend backend = gl::makeBackend(choice, contextKind, gpuDevice);
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
 
-    g_galleryInterrupted.store(false);
-    auto previous = std::signal(SIGINT, onGalleryInterrupt);
     const bool tty = isatty(STDERR_FILENO) != 0;
     const int total = int(presets.size());
     std::vector<Entry> entries;
-    for (int i = 0; i < total && !g_galleryInterrupted.load(); ++i) {
-        Entry entry;
-        entry.session = presets[std::size_t(i)];
-        const std::string label = "gallery " + std::to_string(i + 1) + "/" + std::to_string(total) +
-                                  " " + entry.session.name;
-        const auto start = std::chrono::steady_clock::now();
-        std::optional<Progress> progress;
-        try {
-            applyOverrides(entry.session, f);
-            checkStability(entry.session, false);
-            // A redrawn progress line only where it helps: a terminal, and a
-            // run long enough (~1e9 cell updates) to wait for.
-            if (tty &&
-                double(entry.session.width) * entry.session.height * entry.session.steps >= 1e9)
-                progress.emplace(label, entry.session.steps);
-            RunOptions options;
-            options.chunk = runChunk(entry.session);
-            if (progress)
-                options.progress = [&](int done, int) { progress->update(done); };
-            // No cancel: Ctrl-C lets the current preset finish, so every
-            // image on the page is the preset's full run.
-            RunResult result = runSession(entry.session, backend.makeSimulator, options);
-            entry.seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            const fs::path base = fs::path(f.dir) / entry.session.name;
-            writeRenderOutput(result, base.string() + ".png", base.string() + ".json", 8);
-            entry.session = result.completed;
-        } catch (const std::exception& e) {
-            entry.seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            entry.error = e.what();
+    {
+        const InterruptGuard interrupt(
+            "\nmorphogen: interrupted: finishing the current preset, then writing index.html "
+            "(Ctrl-C again to quit now)\n");
+        for (int i = 0; i < total && !interrupt.cancelled(); ++i) {
+            const std::string label = "gallery " + std::to_string(i + 1) + "/" +
+                                      std::to_string(total) + " " + presets[std::size_t(i)].name;
+            entries.push_back(runPreset(presets[std::size_t(i)], f, backend, label, tty));
         }
-        const std::string summary =
-            sizeText(entry.session, " -> ") + " ... " +
-            (entry.error.empty() ? seconds(entry.seconds) : "FAILED: " + entry.error);
-        if (progress)
-            progress->finish(summary);
-        else
-            std::fprintf(stderr, "%s %s\n", label.c_str(), summary.c_str());
-        entries.push_back(std::move(entry));
     }
-    std::signal(SIGINT, previous);
 
     writeIndex(f.dir, entries, total, backend.reason, f);
     const std::string index = (fs::path(f.dir) / "index.html").string();

@@ -3,13 +3,14 @@
 // Gray-Scott F-k map, McGraw's Fig. 6 with a generalized tensor, for any
 // model and any two of its parameters.
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 
 #include "cli/commands.hpp"
 #include "cli/exploration.hpp"
-#include "cli/plot_text.hpp"
+#include "cli/plot_frame.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
 #include "core/output/colormap.hpp"
@@ -39,18 +40,38 @@ struct MapFlags {
     std::string colormap;
 };
 
-void map(const MapFlags& f) {
-    Session s = explorationBase(f.model, f.preset, "map");
+// Ticks at "nice" values of a parameter swept over `cells` cells: cell i holds
+// min + (max - min) i / (cells - 1), and its tick sits on that cell. `upwards`:
+// the values grow from the bottom (a y axis), whose pixel rows count down.
+PlotAxis linearAxis(const SweepAxis& axis, int cells, int maxTicks, bool upwards) {
+    PlotAxis plotAxis{axis.param, {}};
+    for (const auto& [value, label] : axisTicks(axis.min, axis.max, maxTicks)) {
+        const int cell = int(std::lround((value - axis.min) / (axis.max - axis.min) * (cells - 1)));
+        plotAxis.ticks.emplace_back(upwards ? cells - 1 - cell : cell, label);
+    }
+    return plotAxis;
+}
+
+// What a map runs: the session, with x and y as parameter maps over the grid.
+struct MapPlan {
+    Session session;
+    SweepAxis x, y;
+};
+
+// Reads and checks the flags; throws InputError before anything runs.
+MapPlan planMap(const MapFlags& f) {
+    MapPlan plan;
+    Session& s = plan.session;
+    s = explorationBase(f.model, f.preset, "map");
     const ReactionModel& model = s.reactionModel();
-    const SweepAxis x = parseAxis("--x", f.x, model), y = parseAxis("--y", f.y, model);
-    if (x.param == y.param)
+    plan.x = parseAxis("--x", f.x, model);
+    plan.y = parseAxis("--y", f.y, model);
+    if (plan.x.param == plan.y.param)
         throw InputError("--x and --y must sweep different parameters");
     if (f.size < 16 || f.size > kMaxGridSide)
         throw InputError("--size " + std::to_string(f.size) + ": accepted are 16.." +
                          std::to_string(kMaxGridSide));
-    // Seed spots keep their density as the map grows, so every region starts.
-    if (s.init.type == InitialCondition::Type::SeedSpots && f.preset.empty())
-        s.init.spotCount = std::max(1, int(20.0 * f.size * f.size / (256.0 * 256.0)));
+    keepSeedSpotDensity(s, f.size, !f.preset.empty());
     s.width = s.height = f.size;
     s.schedule.clear();
     if (f.steps >= 0)
@@ -68,74 +89,53 @@ void map(const MapFlags& f) {
     if (!f.colormap.empty())
         s.colormap.name = f.colormap;
     checkColormapName(s.colormap.name);
-    s.paramMaps[x.param] = {ParamMapSpec::Field::LinearX, x.min, x.max};
-    s.paramMaps[y.param] = {ParamMapSpec::Field::LinearY, y.min, y.max};
+    s.paramMaps[plan.x.param] = {ParamMapSpec::Field::LinearX, plan.x.min, plan.x.max};
+    s.paramMaps[plan.y.param] = {ParamMapSpec::Field::LinearY, plan.y.min, plan.y.max};
     validateSession(s, "map");
     imageFormatForPath(f.out);
     checkWritable(f.out);
     checkStability(s, false);
+    return plan;
+}
 
+// The map with the y axis on the left, the x axis below and a title.
+void writeMapPlot(const std::string& path, const MapPlan& plan, const RunResult& result) {
+    const Session& s = plan.session;
+    const ReactionModel& model = s.reactionModel();
+    // Fewer x ticks until their labels no longer touch (small maps, long labels).
+    PlotAxis xAxis;
+    for (int count = 6; count >= 2; --count) {
+        xAxis = linearAxis(plan.x, s.width, count, false);
+        if (xLabelStride(xAxis) == 1)
+            break;
+    }
+    const std::string title = model.name() + ": " + plan.x.param + " (x) vs " + plan.y.param +
+                              " (y), " + std::to_string(result.stepsDone) + " steps";
+    PlotFrame plot =
+        drawPlotFrame(s.width, s.height, xAxis, linearAxis(plan.y, s.height, 6, true), title);
+    plot.canvas.paste(applyColormap(result.state, colormapChemical(s.colormap, model), s.colormap),
+                      s.width, s.height, plot.left, plot.top);
+    writeRgbImage(path, plot.canvas.rgb, plot.canvas.width, plot.canvas.height, 8);
+}
+
+void map(const MapFlags& f) {
+    const MapPlan plan = planMap(f);
+    const Session& s = plan.session;
     gl::Backend backend =
         gl::makeBackend(gl::parseBackendChoice(f.backend), gl::parseContextFlag(f.context),
                         gl::parseGpuDeviceFlag(f.gpuDevice));
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
-    Progress progress("map " + x.param + " x " + y.param, s.steps);
+    Progress progress("map " + plan.x.param + " x " + plan.y.param, s.steps);
     RunOptions options;
     options.chunk = runChunk(s);
     options.progress = [&](int done, int) { progress.update(done); };
     const RunResult result = runSession(s, backend.makeSimulator, options);
     progress.finish("done: " + std::to_string(result.stepsDone) + " steps");
 
-    // The plot: the map with the y axis on the left, the x axis below; wide
-    // enough for the title on small maps.
-    const std::vector<std::pair<double, std::string>> yTicks = axisTicks(y.min, y.max);
-    int widestY = 0;
-    for (const auto& tick : yTicks)
-        widestY = std::max(widestY, textWidth(tick.second));
-    // The y name, a gap, the tick labels, the tick marks.
-    const int left = std::max(64, 8 + textWidth(y.param) + 6 + widestY + 7);
-    const int bottom = 44, top = 28, right = 24;
-    const std::string title = model.name() + ": " + x.param + " (x) vs " + y.param + " (y), " +
-                              std::to_string(result.stepsDone) + " steps";
-    Canvas canvas(std::max(f.size + left + right, left + textWidth(title) + right),
-                  f.size + top + bottom, 1.0f);
-    canvas.paste(applyColormap(result.state, colormapChemical(s.colormap, model), s.colormap),
-                 f.size, f.size, left, top);
-    const float ink[3] = {0.1f, 0.1f, 0.1f};
-    // Fewer x ticks until their labels no longer touch (small maps, long labels).
-    std::vector<std::pair<double, std::string>> xTicks;
-    for (int count = 6; count >= 2; --count) {
-        xTicks = axisTicks(x.min, x.max, count);
-        int widest = 0;
-        for (const auto& tick : xTicks)
-            widest = std::max(widest, textWidth(tick.second));
-        const double spacing = xTicks.size() < 2 ? f.size
-                                                 : (xTicks[1].first - xTicks[0].first) /
-                                                       (x.max - x.min) * (f.size - 1);
-        if (spacing >= widest + 6)
-            break;
-    }
-    for (const auto& [value, label] : xTicks) {
-        // Cell i holds min + (max - min) i / (W - 1): the tick sits on that cell.
-        const int px = left + int(std::lround((value - x.min) / (x.max - x.min) * (f.size - 1)));
-        canvas.fillRect(px, top + f.size, px + 1, top + f.size + 5, ink);
-        drawText(canvas, px - textWidth(label) / 2, top + f.size + 7, label, ink);
-    }
-    for (const auto& [value, label] : yTicks) {
-        const int py =
-            top + f.size - 1 - int(std::lround((value - y.min) / (y.max - y.min) * (f.size - 1)));
-        canvas.fillRect(left - 5, py, left, py + 1, ink);
-        drawText(canvas, left - 7 - textWidth(label), py - kTextHeight / 2, label, ink);
-    }
-    drawText(canvas, left + f.size / 2 - textWidth(x.param) / 2, top + f.size + 24, x.param, ink);
-    drawText(canvas, 8, top + f.size / 2 - kTextHeight / 2, y.param, ink);
-    drawText(canvas, left, 8, title, ink);
-    writeRgbImage(f.out, canvas.rgb, canvas.width, canvas.height, 8);
-
-    Session done = result.completed;
+    writeMapPlot(f.out, plan, result);
     std::filesystem::path sessionPath(f.out);
     sessionPath.replace_extension(".json");
-    saveSessionFile(done, sessionPath.string());
+    saveSessionFile(result.completed, sessionPath.string());
     std::printf("%s\n%s\n", f.out.c_str(), sessionPath.string().c_str());
 }
 

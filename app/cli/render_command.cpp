@@ -1,14 +1,16 @@
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
 #include "core/output/colormap.hpp"
+#include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
 #include "core/models/initial_condition.hpp"
@@ -21,14 +23,6 @@ namespace morphogen::cli {
 namespace {
 
 constexpr const char* kDefaultPreset = "gs_coral";
-
-std::atomic<bool> g_interrupted{false};
-
-extern "C" void onInterrupt(int) {
-    g_interrupted.store(true);
-    // A second Ctrl-C ends the process the usual way.
-    std::signal(SIGINT, SIG_DFL);
-}
 
 struct RenderFlags {
     std::string preset;
@@ -53,6 +47,16 @@ struct RenderFlags {
     std::string levels;
     int bitDepth = 8;
 };
+
+// An enumeration's name given to `flag`; throws InputError listing `accepted`.
+template <class E>
+E parseFlag(const std::string& flag, const std::string& text,
+            std::optional<E> (*parse)(std::string_view), const std::string& accepted) {
+    const std::optional<E> value = parse(text);
+    if (!value)
+        throw InputError(flag + " '" + text + "' is unknown (accepted: " + accepted + ")");
+    return *value;
+}
 
 void parseSize(const std::string& text, Session& s);
 
@@ -116,15 +120,8 @@ Session buildSession(const RenderFlags& f) {
         parseSize(f.size, s);
     if (f.steps >= 0)
         applySteps(s, f.steps, "--steps");
-    if (!f.integrator.empty()) {
-        if (f.integrator == "explicit_euler")
-            s.integrator = Integrator::ExplicitEuler;
-        else if (f.integrator == "semi_implicit")
-            s.integrator = Integrator::SemiImplicit;
-        else
-            throw InputError("--integrator '" + f.integrator +
-                             "' is unknown (accepted: explicit_euler, semi_implicit)");
-    }
+    if (!f.integrator.empty())
+        s.integrator = parseFlag("--integrator", f.integrator, parseIntegrator, integratorNames());
     if (f.relaxationPasses != -1) {
         if (f.relaxationPasses < 1 || f.relaxationPasses > 1000)
             throw InputError("--relaxation-passes " + std::to_string(f.relaxationPasses) +
@@ -139,25 +136,16 @@ Session buildSession(const RenderFlags& f) {
         throw InputError("--dt must be positive");
     for (const std::string& p : f.params)
         applyParamOverride(s, p);
-    if (!f.edges.empty()) {
-        if (f.edges == "periodic")
-            s.edges = EdgeMode::Periodic;
-        else if (f.edges == "clamped")
-            s.edges = EdgeMode::Clamped;
-        else
-            throw InputError("--edges '" + f.edges + "' is unknown (accepted: periodic, clamped)");
-    }
+    if (!f.edges.empty())
+        s.edges = parseFlag("--edges", f.edges, parseEdgeMode, edgeModeNames());
     if (!f.stencil.empty()) {
         if (s.diffusion.type != DiffusionType::Isotropic)
             throw InputError("--stencil applies to isotropic diffusion only; this session's is " +
                              toString(s.diffusion.type));
-        if (f.stencil == "5-point" || f.stencil == "5")
-            s.diffusion.stencil = Stencil::FivePoint;
-        else if (f.stencil == "9-point" || f.stencil == "9")
-            s.diffusion.stencil = Stencil::NinePoint;
-        else
-            throw InputError("--stencil '" + f.stencil +
-                             "' is unknown (accepted: 5-point, 9-point)");
+        // The flag also takes the short "5" and "9"; sessions spell them out.
+        const std::string stencil =
+            f.stencil == "5" || f.stencil == "9" ? f.stencil + "-point" : f.stencil;
+        s.diffusion.stencil = parseFlag("--stencil", stencil, parseStencil, stencilNames());
     }
     if (!f.colormap.empty())
         s.colormap.name = f.colormap;
@@ -206,22 +194,17 @@ void render(const RenderFlags& f) {
                         gl::parseGpuDeviceFlag(f.gpuDevice));
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
 
-    g_interrupted.store(false);
-    auto previous = std::signal(SIGINT, onInterrupt);
     Progress progress("render " + (session.name.empty() ? std::string("session") : session.name),
                       session.steps);
-    RunOptions options;
-    options.progress = [&](int done, int) { progress.update(done); };
-    options.cancel = &g_interrupted;
-    options.chunk = runChunk(session);
     RunResult result;
-    try {
+    {
+        const InterruptGuard interrupt;
+        RunOptions options;
+        options.progress = [&](int done, int) { progress.update(done); };
+        options.cancel = interrupt.flag();
+        options.chunk = runChunk(session);
         result = runSession(session, backend.makeSimulator, options);
-    } catch (...) {
-        std::signal(SIGINT, previous);
-        throw;
     }
-    std::signal(SIGINT, previous);
 
     if (result.cancelled) {
         progress.finish("interrupted after " + std::to_string(result.stepsDone) +
@@ -272,8 +255,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option(
         "--gpu-device", flags->gpuDevice,
         "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
-    cmd->add_option("--colormap", flags->colormap,
-                    "grey, two-colour, viridis, magma, inferno, coolwarm");
+    cmd->add_option("--colormap", flags->colormap, joinNames(colormapNames()));
     cmd->add_option("--chemical", flags->chemical, "chemical to show (default: the model's)");
     cmd->add_option("--levels", flags->levels,
                     "LOW:HIGH window on the min-max normalised value (default 0:1)");

@@ -16,7 +16,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/exploration.hpp"
-#include "cli/plot_text.hpp"
+#include "cli/plot_frame.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
 #include "core/output/colormap.hpp"
@@ -80,14 +80,18 @@ void writeSheet(const std::string& path, const SweepSpec& spec, const std::vecto
     // Small tiles are enlarged so that the sheet stays readable.
     const int zoom = std::max(1, (48 + spec.tile - 1) / spec.tile);
     const int side = spec.tile * zoom, gap = 2, pitch = side + gap;
-    const int left = 70, top = 28, bottom = 46, right = 16;
     const int plotW = spec.columns * pitch - gap, plotH = spec.rows * pitch - gap;
     const std::string title = model.name() + ": " + spec.x.param + " (columns) vs " + spec.y.param +
                               " (rows), " + std::to_string(steps) + " steps, " +
                               std::to_string(spec.tile) + " cells per tile";
-    // Wide enough for the title too, which a narrow grid would clip.
-    Canvas canvas(std::max(left + plotW + right, left + textWidth(title) + right),
-                  top + plotH + bottom, 1.0f);
+    PlotAxis xAxis{spec.x.param, {}}, yAxis{spec.y.param, {}};
+    for (int column = 0; column < spec.columns; ++column)
+        xAxis.ticks.emplace_back(column * pitch + side / 2,
+                                 formatValue(sweepValue(spec.x, column, spec.columns)));
+    for (int row = 0; row < spec.rows; ++row)
+        yAxis.ticks.emplace_back((spec.rows - 1 - row) * pitch + side / 2,
+                                 formatValue(sweepValue(spec.y, row, spec.rows)));
+    PlotFrame plot = drawPlotFrame(plotW, plotH, xAxis, yAxis, title);
     for (int row = 0; row < spec.rows; ++row)
         for (int column = 0; column < spec.columns; ++column) {
             const std::vector<float> rgb = applyColormap(
@@ -98,32 +102,10 @@ void writeSheet(const std::string& path, const SweepSpec& spec, const std::vecto
                     for (int c = 0; c < 3; ++c)
                         big[(std::size_t(y) * side + x) * 3 + c] =
                             rgb[(std::size_t(y / zoom) * spec.tile + x / zoom) * 3 + c];
-            canvas.paste(big, side, side, left + column * pitch,
-                         top + (spec.rows - 1 - row) * pitch);
+            plot.canvas.paste(big, side, side, plot.left + column * pitch,
+                              plot.top + (spec.rows - 1 - row) * pitch);
         }
-    const float ink[3] = {0.1f, 0.1f, 0.1f};
-    int widest = 0;
-    for (int column = 0; column < spec.columns; ++column)
-        widest = std::max(widest, textWidth(formatValue(sweepValue(spec.x, column, spec.columns))));
-    const int columnStride = std::max(1, (widest + 6 + pitch - 1) / pitch);
-    for (int column = 0; column < spec.columns; column += columnStride) {
-        const std::string label = formatValue(sweepValue(spec.x, column, spec.columns));
-        const int px = left + column * pitch + side / 2;
-        canvas.fillRect(px, top + plotH, px + 1, top + plotH + 4, ink);
-        drawText(canvas, px - textWidth(label) / 2, top + plotH + 6, label, ink);
-    }
-    const int rowStride = std::max(1, (kTextHeight + 2 + pitch - 1) / pitch);
-    for (int row = 0; row < spec.rows; row += rowStride) {
-        const std::string label = formatValue(sweepValue(spec.y, row, spec.rows));
-        const int py = top + (spec.rows - 1 - row) * pitch + side / 2;
-        canvas.fillRect(left - 4, py, left, py + 1, ink);
-        drawText(canvas, left - 6 - textWidth(label), py - kTextHeight / 2, label, ink);
-    }
-    drawText(canvas, left + plotW / 2 - textWidth(spec.x.param) / 2, top + plotH + 26, spec.x.param,
-             ink);
-    drawText(canvas, 6, top + plotH / 2 - kTextHeight / 2, spec.y.param, ink);
-    drawText(canvas, left, 8, title, ink);
-    writeRgbImage(path, canvas.rgb, canvas.width, canvas.height, 8);
+    writeRgbImage(path, plot.canvas.rgb, plot.canvas.width, plot.canvas.height, 8);
 }
 
 void writeStats(const std::filesystem::path& dir, const SweepSpec& spec,
@@ -200,9 +182,7 @@ void sweep(const SweepFlags& f) {
         throw InputError("--grid " + f.grid + " of --tile " + std::to_string(f.tile) + " exceeds " +
                          std::to_string(kMaxGridSide) + " cells per side");
     Session& base = spec.base;
-    // As in `map`: seed spots keep their density at the tile's size.
-    if (base.init.type == InitialCondition::Type::SeedSpots && f.preset.empty())
-        base.init.spotCount = std::max(1, int(20.0 * f.tile * f.tile / (256.0 * 256.0)));
+    keepSeedSpotDensity(base, f.tile, !f.preset.empty());
     base.width = base.height = spec.tile;
     base.schedule.clear();
     base.stages.clear();

@@ -4,11 +4,14 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
+#include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 
 namespace morphogen {
@@ -45,13 +48,11 @@ public:
     void rejectUnknown(std::initializer_list<const char*> known) const {
         for (auto it = m_object.begin(); it != m_object.end(); ++it) {
             bool ok = false;
-            std::string list;
-            for (const char* k : known) {
+            for (const char* k : known)
                 ok = ok || it.key() == k;
-                list += (list.empty() ? "" : ", ") + std::string(k);
-            }
             if (!ok)
-                fail("unknown field '" + path(it.key()) + "'", "(accepted: " + list + ")");
+                fail("unknown field '" + path(it.key()) + "'",
+                     "(accepted: " + joinNames(known) + ")");
         }
     }
 
@@ -62,6 +63,20 @@ public:
         if (!j->is_string())
             failField(key, "must be a string, got " + typeName(*j));
         return j->get<std::string>();
+    }
+
+    // A string naming one value of an enumeration: `parse` reads the names,
+    // `accepted` lists them for the error.
+    template <class E>
+    E choice(const std::string& key, E fallback, std::optional<E> (*parse)(std::string_view),
+             const std::string& accepted) const {
+        if (!find(key))
+            return fallback;
+        const std::string name = string(key, "");
+        const std::optional<E> value = parse(name);
+        if (!value)
+            failField(key, "is '" + name + "', accepted: " + accepted);
+        return *value;
     }
 
     double number(const std::string& key, double fallback, double min, double max) const {

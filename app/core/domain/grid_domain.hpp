@@ -2,7 +2,9 @@
 
 #include <cassert>
 #include <cstddef>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace morphogen {
 
@@ -12,6 +14,9 @@ enum class EdgeMode {
 };
 
 std::string toString(EdgeMode mode);
+// toString's spellings; std::nullopt for others. edgeModeNames() lists them.
+std::optional<EdgeMode> parseEdgeMode(std::string_view name);
+std::string edgeModeNames();
 
 // A W x H grid of cells with 4-connected neighbours. Both backends address it
 // the same way: the CPU wraps or clamps indices, the GPU sets the sampler's

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/base/enum_names.hpp"
 #include "core/base/json_fields.hpp"
 #include "core/models/reaction_model.hpp"
 
@@ -9,25 +10,16 @@ namespace morphogen {
 
 using nlohmann::json;
 
-std::string toString(Stencil stencil) {
-    return stencil == Stencil::FivePoint ? "5-point" : "9-point";
-}
-
-std::string toString(DiffusionType type) {
-    switch (type) {
-    case DiffusionType::Isotropic:
-        return "isotropic";
-    case DiffusionType::Anisotropic:
-        return "anisotropic";
-    case DiffusionType::Generalized:
-        return "generalized";
-    }
-    return "isotropic";
-}
-
 namespace {
 
-const std::pair<OrientationField::Type, const char*> kFieldNames[] = {
+const EnumName<Stencil> kStencils[] = {{Stencil::FivePoint, "5-point"},
+                                       {Stencil::NinePoint, "9-point"}};
+
+const EnumName<DiffusionType> kDiffusionTypes[] = {{DiffusionType::Isotropic, "isotropic"},
+                                                   {DiffusionType::Anisotropic, "anisotropic"},
+                                                   {DiffusionType::Generalized, "generalized"}};
+
+const EnumName<OrientationField::Type> kFieldTypes[] = {
     {OrientationField::Type::Constant, "constant"},
     {OrientationField::Type::Radial, "radial"},
     {OrientationField::Type::Concentric, "concentric"},
@@ -35,6 +27,14 @@ const std::pair<OrientationField::Type, const char*> kFieldNames[] = {
     {OrientationField::Type::Vortex, "vortex"},
     {OrientationField::Type::Blend, "blend"},
     {OrientationField::Type::ImageGradient, "image_gradient"}};
+
+std::optional<DiffusionType> parseDiffusionType(std::string_view name) {
+    return valueNamed(kDiffusionTypes, name);
+}
+
+std::optional<OrientationField::Type> parseFieldType(std::string_view name) {
+    return valueNamed(kFieldTypes, name);
+}
 
 void checkChemical(const FieldReader& reader, const std::string& key, const ReactionModel& model) {
     if (model.chemicalIndex(key) < 0)
@@ -46,18 +46,7 @@ OrientationField fieldFromJson(const json& j, const std::string& source, const s
     FieldReader reader(j, source, path);
     reader.rejectUnknown({"type", "angle", "centre", "parts", "image"});
     OrientationField field;
-    const std::string type = reader.string("type", "constant");
-    bool known = false;
-    std::string names;
-    for (const auto& [t, name] : kFieldNames) {
-        names += (names.empty() ? "" : ", ") + std::string(name);
-        if (type == name) {
-            field.type = t;
-            known = true;
-        }
-    }
-    if (!known)
-        reader.failField("type", "is '" + type + "', accepted: " + names);
+    field.type = reader.choice("type", field.type, parseFieldType, nameList(kFieldTypes));
     field.angle = float(reader.number("angle", 0.0, -3600.0, 3600.0));
     if (const json* centre = reader.find("centre")) {
         if (!centre->is_array() || centre->size() != 2)
@@ -81,9 +70,7 @@ OrientationField fieldFromJson(const json& j, const std::string& source, const s
 
 json fieldToJson(const OrientationField& f) {
     json j;
-    for (const auto& [t, name] : kFieldNames)
-        if (t == f.type)
-            j["type"] = name;
+    j["type"] = toString(f.type);
     j["angle"] = f.angle;
     j["centre"] = {f.centreX, f.centreY};
     if (!f.parts.empty()) {
@@ -98,11 +85,24 @@ json fieldToJson(const OrientationField& f) {
 
 } // namespace
 
+std::string toString(Stencil stencil) {
+    return nameOf(kStencils, stencil);
+}
+
+std::optional<Stencil> parseStencil(std::string_view name) {
+    return valueNamed(kStencils, name);
+}
+
+std::string stencilNames() {
+    return nameList(kStencils);
+}
+
+std::string toString(DiffusionType type) {
+    return nameOf(kDiffusionTypes, type);
+}
+
 std::string toString(OrientationField::Type type) {
-    for (const auto& [t, name] : kFieldNames)
-        if (t == type)
-            return name;
-    return "constant";
+    return nameOf(kFieldTypes, type);
 }
 
 DiffusionSpec diffusionFromJson(const json& j, const std::string& source,
@@ -110,24 +110,8 @@ DiffusionSpec diffusionFromJson(const json& j, const std::string& source,
     FieldReader reader(j, source, "diffusion");
     reader.rejectUnknown({"type", "stencil", "tensors", "map", "savitzky_golay", "stabilize"});
     DiffusionSpec spec;
-    const std::string type = reader.string("type", "isotropic");
-    if (type == "isotropic")
-        spec.type = DiffusionType::Isotropic;
-    else if (type == "anisotropic")
-        spec.type = DiffusionType::Anisotropic;
-    else if (type == "generalized")
-        spec.type = DiffusionType::Generalized;
-    else
-        reader.failField("type",
-                         "is '" + type + "', accepted: isotropic, anisotropic, generalized");
-
-    const std::string stencil = reader.string("stencil", "5-point");
-    if (stencil == "5-point")
-        spec.stencil = Stencil::FivePoint;
-    else if (stencil == "9-point")
-        spec.stencil = Stencil::NinePoint;
-    else
-        reader.failField("stencil", "is '" + stencil + "', accepted: 5-point, 9-point");
+    spec.type = reader.choice("type", spec.type, parseDiffusionType, nameList(kDiffusionTypes));
+    spec.stencil = reader.choice("stencil", spec.stencil, parseStencil, stencilNames());
 
     if (const json* tensors = reader.find("tensors")) {
         FieldReader t(*tensors, source, reader.path("tensors"));
@@ -152,7 +136,7 @@ DiffusionSpec diffusionFromJson(const json& j, const std::string& source,
         }
     }
     if (spec.type != DiffusionType::Isotropic && !reader.find("tensors"))
-        reader.failField("tensors", "is required for " + type + " diffusion");
+        reader.failField("tensors", "is required for " + toString(spec.type) + " diffusion");
 
     if (const json* sg = reader.find("savitzky_golay")) {
         FieldReader s(*sg, source, reader.path("savitzky_golay"));

@@ -3,6 +3,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -16,6 +17,9 @@ enum class Stencil {
     NinePoint, // lap = (4 (l + r + u + d) + corners - 20c) / 6: more isotropic
 };
 std::string toString(Stencil stencil);
+// toString's spellings; std::nullopt for others. stencilNames() lists them.
+std::optional<Stencil> parseStencil(std::string_view name);
+std::string stencilNames();
 
 enum class DiffusionType {
     Isotropic,   // D lap(c), 5- or 9-point

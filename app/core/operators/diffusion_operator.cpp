@@ -49,55 +49,68 @@ Kernel5 anisotropicKernel(const AnisotropicTensor& t, float rate) {
     return k.scaled(rate);
 }
 
-DiffusionOperator compileDiffusion(const Session& session) {
+namespace {
+
+// McGraw's generalized diffusion: each chemical's tensor sequence as one 5x5
+// Savitzky-Golay kernel (3x3 where every kernel fits).
+void compileGeneralized(const Session& session, DiffusionOperator& op) {
     const ReactionModel& model = session.reactionModel();
     const DiffusionSpec& spec = session.diffusion;
-    DiffusionOperator op;
-    op.chemicals = int(model.chemicals().size());
-    // On a coarse level (cells h times the finest) an order-n derivative
-    // shrinks by h^n: second-order terms by h^2.
-    const double spacing = session.gridSpacing;
-    for (int c = 0; c < op.chemicals; ++c)
-        op.rates[std::size_t(c)] =
-            float(rateOf(session, model.chemicals()[std::size_t(c)]) / (spacing * spacing));
-
-    switch (spec.type) {
-    case DiffusionType::Isotropic:
-        op.form = spec.stencil == Stencil::FivePoint ? DiffusionOperator::Form::Laplacian5
-                                                     : DiffusionOperator::Form::Laplacian9;
-        return op;
-    case DiffusionType::Generalized: {
-        GeneralizedOperatorOptions options;
-        options.sg.radius = spec.savitzkyGolay.window / 2;
-        options.sg.degree = spec.savitzkyGolay.degree;
-        options.centralSecondDerivatives = spec.savitzkyGolay.centralSecondOrder;
-        int radius = 1;
-        for (int c = 0; c < op.chemicals; ++c) {
-            const std::string& name = model.chemicals()[std::size_t(c)].name;
-            auto it = spec.generalized.find(name);
-            // Chemicals without a tensor sequence diffuse isotropically (set (a)).
-            TensorSequence sequence =
-                it == spec.generalized.end() ? tableTwoSet('a') : parseTensorSequence(it->second);
-            // rates[] already holds 1/h^2; ranks 3 and 4 need 1/h and 1/h^2 more.
-            for (std::size_t i = 0; i < sequence.values.size(); ++i)
-                sequence.values[i] /= std::pow(spacing, tensorComponents()[i].rank - 2);
-            Kernel5 kernel = displayOriented(generalizedDiffusionKernel(sequence, options))
-                                 .scaled(op.rates[std::size_t(c)]);
-            if (spec.stabilize) {
-                const StabilizedKernel stable = stabilizeKernel(kernel);
-                kernel = stable.kernel;
-                op.stabilization[std::size_t(c)] = stable.eta;
-            }
-            op.kernels[std::size_t(c)] = kernel;
-            radius = std::max(radius, kernel.radius());
+    GeneralizedOperatorOptions options;
+    options.sg.radius = spec.savitzkyGolay.window / 2;
+    options.sg.degree = spec.savitzkyGolay.degree;
+    options.centralSecondDerivatives = spec.savitzkyGolay.centralSecondOrder;
+    int radius = 1;
+    for (int c = 0; c < op.chemicals; ++c) {
+        const std::string& name = model.chemicals()[std::size_t(c)].name;
+        auto it = spec.generalized.find(name);
+        // Chemicals without a tensor sequence diffuse isotropically (set (a)).
+        TensorSequence sequence =
+            it == spec.generalized.end() ? tableTwoSet('a') : parseTensorSequence(it->second);
+        // rates[] already holds 1/h^2; ranks 3 and 4 need 1/h and 1/h^2 more.
+        for (std::size_t i = 0; i < sequence.values.size(); ++i)
+            sequence.values[i] /= std::pow(session.gridSpacing, tensorComponents()[i].rank - 2);
+        Kernel5 kernel = displayOriented(generalizedDiffusionKernel(sequence, options))
+                             .scaled(op.rates[std::size_t(c)]);
+        if (spec.stabilize) {
+            const StabilizedKernel stable = stabilizeKernel(kernel);
+            kernel = stable.kernel;
+            op.stabilization[std::size_t(c)] = stable.eta;
         }
-        op.form = radius == 1 ? DiffusionOperator::Form::Kernel3 : DiffusionOperator::Form::Kernel5;
-        return op;
+        op.kernels[std::size_t(c)] = kernel;
+        radius = std::max(radius, kernel.radius());
     }
-    case DiffusionType::Anisotropic:
-        break;
-    }
+    op.form = radius == 1 ? DiffusionOperator::Form::Kernel3 : DiffusionOperator::Form::Kernel5;
+}
 
+// A diffusion map's texels: the scale s and s (cos 2 phi, sin 2 phi) of the
+// orientation phi, the doubled angle because a tensor's axis has no sign.
+State diffusionMapTexels(const DiffusionMapSpec& map, int w, int h, const std::string& baseDir) {
+    const std::vector<float> angles = orientationAngles(map.orientation, w, h, baseDir);
+    std::vector<float> scale(std::size_t(w) * h, map.scaleMax);
+    if (!map.scaleImage.empty()) {
+        std::string path = map.scaleImage;
+        if (!baseDir.empty() && path.front() != '/')
+            path = baseDir + "/" + path;
+        const std::vector<float> lum = loadLuminance(path, w, h);
+        for (std::size_t i = 0; i < scale.size(); ++i)
+            scale[i] =
+                map.scaleMin + (map.scaleMax - map.scaleMin) * std::clamp(lum[i], 0.0f, 1.0f);
+    }
+    State texels(w, h, 3);
+    for (std::size_t i = 0; i < scale.size(); ++i) {
+        texels.plane(0)[i] = scale[i];
+        texels.plane(1)[i] = float(scale[i] * std::cos(2.0 * angles[i]));
+        texels.plane(2)[i] = float(scale[i] * std::sin(2.0 * angles[i]));
+    }
+    return texels;
+}
+
+// Witkin-Kass: a 3x3 kernel per chemical, or with a diffusion map the map's
+// texels and per chemical the coefficients that turn them into its tensor.
+void compileAnisotropic(const Session& session, DiffusionOperator& op) {
+    const ReactionModel& model = session.reactionModel();
+    const DiffusionSpec& spec = session.diffusion;
     // Chemicals without a tensor diffuse isotropically at their rate.
     auto tensorOf = [&](int c) {
         auto it = spec.anisotropic.find(model.chemicals()[std::size_t(c)].name);
@@ -107,29 +120,10 @@ DiffusionOperator compileDiffusion(const Session& session) {
         op.form = DiffusionOperator::Form::Kernel3;
         for (int c = 0; c < op.chemicals; ++c)
             op.kernels[std::size_t(c)] = anisotropicKernel(tensorOf(c), op.rates[std::size_t(c)]);
-        return op;
+        return;
     }
-
     op.form = DiffusionOperator::Form::TensorMap;
-    const int w = session.width, h = session.height;
-    const std::vector<float> angles =
-        orientationAngles(spec.map->orientation, w, h, session.baseDir);
-    std::vector<float> scale(std::size_t(w) * h, spec.map->scaleMax);
-    if (!spec.map->scaleImage.empty()) {
-        std::string path = spec.map->scaleImage;
-        if (!session.baseDir.empty() && path.front() != '/')
-            path = session.baseDir + "/" + path;
-        const std::vector<float> lum = loadLuminance(path, w, h);
-        for (std::size_t i = 0; i < scale.size(); ++i)
-            scale[i] = spec.map->scaleMin +
-                       (spec.map->scaleMax - spec.map->scaleMin) * std::clamp(lum[i], 0.0f, 1.0f);
-    }
-    op.map = State(w, h, 3);
-    for (std::size_t i = 0; i < scale.size(); ++i) {
-        op.map.plane(0)[i] = scale[i];
-        op.map.plane(1)[i] = float(scale[i] * std::cos(2.0 * angles[i]));
-        op.map.plane(2)[i] = float(scale[i] * std::sin(2.0 * angles[i]));
-    }
+    op.map = diffusionMapTexels(*spec.map, session.width, session.height, session.baseDir);
     for (int c = 0; c < op.chemicals; ++c) {
         const AnisotropicTensor t = tensorOf(c);
         const double rate = op.rates[std::size_t(c)];
@@ -137,6 +131,34 @@ DiffusionOperator compileDiffusion(const Session& session) {
         const double m = rate * (a1 + a2) / 2, d = rate * (a1 - a2) / 2;
         op.mapCoefficients[std::size_t(c)] = {float(m), float(d * std::cos(2 * t.theta * kDegree)),
                                               float(d * std::sin(2 * t.theta * kDegree))};
+    }
+}
+
+} // namespace
+
+DiffusionOperator compileDiffusion(const Session& session) {
+    const ReactionModel& model = session.reactionModel();
+    DiffusionOperator op;
+    op.chemicals = int(model.chemicals().size());
+    // On a coarse level (cells h times the finest) an order-n derivative
+    // shrinks by h^n: second-order terms by h^2.
+    const double spacing = session.gridSpacing;
+    for (int c = 0; c < op.chemicals; ++c)
+        op.rates[std::size_t(c)] =
+            float(rateOf(session, model.chemicals()[std::size_t(c)]) / (spacing * spacing));
+
+    switch (session.diffusion.type) {
+    case DiffusionType::Isotropic:
+        op.form = session.diffusion.stencil == Stencil::FivePoint
+                      ? DiffusionOperator::Form::Laplacian5
+                      : DiffusionOperator::Form::Laplacian9;
+        break;
+    case DiffusionType::Generalized:
+        compileGeneralized(session, op);
+        break;
+    case DiffusionType::Anisotropic:
+        compileAnisotropic(session, op);
+        break;
     }
     return op;
 }

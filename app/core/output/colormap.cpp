@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
+#include <optional>
 
+#include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 
 namespace morphogen {
@@ -17,9 +20,15 @@ Rgb hex(unsigned v) {
             float(v & 0xff) / 255.0f};
 }
 
+enum class Palette { Grey, TwoColour, Viridis, Magma, Inferno, Coolwarm };
+
+const EnumName<Palette> kPalettes[] = {
+    {Palette::Grey, "grey"},   {Palette::TwoColour, "two-colour"}, {Palette::Viridis, "viridis"},
+    {Palette::Magma, "magma"}, {Palette::Inferno, "inferno"},      {Palette::Coolwarm, "coolwarm"}};
+
 // Perceptual palettes as evenly spaced anchors (matplotlib's viridis, magma,
 // inferno; a cool-warm diverging map), interpolated piecewise linearly.
-const std::vector<Rgb>& anchors(const std::string& name) {
+const std::vector<Rgb>& anchors(Palette palette) {
     static const std::vector<Rgb> viridis = {
         hex(0x440154), hex(0x482878), hex(0x3e4989), hex(0x31688e), hex(0x26828e),
         hex(0x1f9e89), hex(0x35b779), hex(0x6ece58), hex(0xb5de2b), hex(0xfde725)};
@@ -32,13 +41,26 @@ const std::vector<Rgb>& anchors(const std::string& name) {
     static const std::vector<Rgb> coolwarm = {hex(0x3b4cc0), hex(0x7093f3), hex(0xaac7fd),
                                               hex(0xdddddd), hex(0xf7b89c), hex(0xe7755b),
                                               hex(0xb40426)};
-    if (name == "viridis")
+    switch (palette) {
+    case Palette::Viridis:
         return viridis;
-    if (name == "magma")
+    case Palette::Magma:
         return magma;
-    if (name == "inferno")
+    case Palette::Inferno:
         return inferno;
-    return coolwarm;
+    default:
+        assert(palette == Palette::Coolwarm && "grey and two-colour have no anchors");
+        return coolwarm;
+    }
+}
+
+// Throws InputError naming the accepted maps.
+Palette parsePalette(const std::string& name) {
+    const std::optional<Palette> palette = valueNamed(kPalettes, name);
+    if (!palette)
+        throw InputError("colour map '" + name + "' is unknown (accepted: " + nameList(kPalettes) +
+                         ")");
+    return *palette;
 }
 
 Rgb lerp(const Rgb& a, const Rgb& b, float t) {
@@ -54,28 +76,26 @@ Rgb samplePalette(const std::vector<Rgb>& palette, float t) {
 } // namespace
 
 const std::vector<std::string>& colormapNames() {
-    static const std::vector<std::string> names = {"grey",  "two-colour", "viridis",
-                                                   "magma", "inferno",    "coolwarm"};
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> list;
+        for (const EnumName<Palette>& p : kPalettes)
+            list.push_back(p.name);
+        return list;
+    }();
     return names;
 }
 
 void checkColormapName(const std::string& name) {
-    const auto& names = colormapNames();
-    if (std::find(names.begin(), names.end(), name) != names.end())
-        return;
-    std::string list;
-    for (const std::string& n : names)
-        list += (list.empty() ? "" : ", ") + n;
-    throw InputError("colour map '" + name + "' is unknown (accepted: " + list + ")");
+    parsePalette(name);
 }
 
 std::vector<Rgb> colormapAnchors(const ColorMapSpec& spec) {
-    checkColormapName(spec.name);
-    if (spec.name == "grey")
+    const Palette palette = parsePalette(spec.name);
+    if (palette == Palette::Grey)
         return {{0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}};
-    if (spec.name == "two-colour")
+    if (palette == Palette::TwoColour)
         return {spec.low, spec.high};
-    return anchors(spec.name);
+    return anchors(palette);
 }
 
 int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model) {

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/image_io.hpp"
+#include "core/base/enum_names.hpp"
 #include "core/base/json_fields.hpp"
 #include "core/base/random.hpp"
 #include "core/models/reaction_model.hpp"
@@ -18,10 +19,14 @@ using nlohmann::json;
 
 namespace {
 
-const std::pair<ParamMapSpec::Field, const char*> kFields[] = {
+const EnumName<ParamMapSpec::Field> kFields[] = {
     {ParamMapSpec::Field::LinearX, "linear_x"}, {ParamMapSpec::Field::LinearY, "linear_y"},
     {ParamMapSpec::Field::Radial, "radial"},    {ParamMapSpec::Field::Noise, "noise"},
     {ParamMapSpec::Field::Image, "image"},      {ParamMapSpec::Field::Tiles, "tiles"}};
+
+std::optional<ParamMapSpec::Field> parseField(std::string_view name) {
+    return valueNamed(kFields, name);
+}
 
 // Value noise: random values on a lattice `scale` cells apart, smoothstep-
 // interpolated; the lattice wraps so the field tiles on a periodic grid.
@@ -43,10 +48,7 @@ float valueNoise(double x, double y, int cellsX, int cellsY, std::uint64_t seed)
 } // namespace
 
 std::string toString(ParamMapSpec::Field field) {
-    for (const auto& [f, name] : kFields)
-        if (f == field)
-            return name;
-    return "linear_x";
+    return nameOf(kFields, field);
 }
 
 std::vector<float> evaluateParamMap(const ParamMapSpec& spec, int width, int height,
@@ -116,18 +118,7 @@ std::map<std::string, ParamMapSpec> paramMapsFromJson(const json& j, const std::
         FieldReader reader(*it, source, maps.path(it.key()));
         reader.rejectUnknown({"field", "range", "scale", "centre", "image", "tiles", "values"});
         ParamMapSpec spec;
-        const std::string field = reader.string("field", "linear_x");
-        bool known = false;
-        std::string names;
-        for (const auto& [f, name] : kFields) {
-            names += (names.empty() ? "" : ", ") + std::string(name);
-            if (field == name) {
-                spec.field = f;
-                known = true;
-            }
-        }
-        if (!known)
-            reader.failField("field", "is '" + field + "', accepted: " + names);
+        spec.field = reader.choice("field", spec.field, parseField, nameList(kFields));
         if (spec.field == ParamMapSpec::Field::Tiles) {
             const json* tiles = reader.find("tiles");
             if (!tiles || !tiles->is_array() || tiles->size() != 2)

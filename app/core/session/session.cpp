@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/embedded_files.hpp"
+#include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/json_fields.hpp"
 
@@ -17,12 +18,23 @@ namespace morphogen {
 
 using nlohmann::json;
 
+namespace {
+
+const EnumName<Integrator> kIntegrators[] = {{Integrator::ExplicitEuler, "explicit_euler"},
+                                             {Integrator::SemiImplicit, "semi_implicit"}};
+
+} // namespace
+
 std::string toString(Integrator integrator) {
-    return integrator == Integrator::ExplicitEuler ? "explicit_euler" : "semi_implicit";
+    return nameOf(kIntegrators, integrator);
 }
 
-std::string toString(EdgeMode mode) {
-    return mode == EdgeMode::Periodic ? "periodic" : "clamped";
+std::optional<Integrator> parseIntegrator(std::string_view name) {
+    return valueNamed(kIntegrators, name);
+}
+
+std::string integratorNames() {
+    return nameList(kIntegrators);
 }
 
 const ReactionModel& Session::reactionModel() const {
@@ -53,6 +65,130 @@ std::array<float, 3> colour(const FieldReader& reader, const std::string& key,
 
 } // namespace
 
+namespace {
+
+ParamValues paramsFromJson(const FieldReader& top, const ReactionModel& model) {
+    ParamValues params;
+    for (const ParamSpec& p : model.params())
+        params[p.name] = p.defaultValue;
+    const json* given = top.find("params");
+    if (!given)
+        return params;
+    FieldReader reader(*given, top.source(), "params");
+    for (auto it = given->begin(); it != given->end(); ++it) {
+        const ParamSpec* spec = model.param(it.key());
+        if (!spec)
+            reader.fail("field 'params." + it.key() + "'",
+                        "is not a parameter of model '" + model.name() +
+                            "' (parameters: " + model.paramNames() + ")");
+        params[it.key()] = float(reader.numberValue(*it, it.key(), spec->min, spec->max));
+    }
+    return params;
+}
+
+// "size": N or [W, H].
+void readSize(const FieldReader& top, Session& s) {
+    const json* size = top.find("size");
+    if (!size)
+        return;
+    if (size->is_number_integer()) {
+        s.width = s.height = int(top.integer("size", 0, 1, kMaxGridSide));
+    } else if (size->is_array() && size->size() == 2) {
+        FieldReader dummy(json::object(), top.source(), "");
+        s.width = int(dummy.numberValue((*size)[0], "size[0]", 1, kMaxGridSide));
+        s.height = int(dummy.numberValue((*size)[1], "size[1]", 1, kMaxGridSide));
+        if (!(*size)[0].is_number_integer() || !(*size)[1].is_number_integer())
+            top.failField("size", "must hold integers");
+    } else {
+        top.failField("size", "must be an integer N or an array [W, H], got " + size->dump());
+    }
+}
+
+std::vector<ScheduleLevel> scheduleFromJson(const FieldReader& top, const json& schedule) {
+    if (!schedule.is_array() || schedule.empty())
+        top.failField("schedule", "must be a non-empty array of {\"size\": N or [W, H], "
+                                  "\"steps\": N}, coarsest first");
+    std::vector<ScheduleLevel> levels;
+    for (std::size_t i = 0; i < schedule.size(); ++i) {
+        FieldReader level(schedule[i], top.source(), "schedule[" + std::to_string(i) + "]");
+        level.rejectUnknown({"size", "steps"});
+        ScheduleLevel l;
+        const json* size = level.find("size");
+        if (size && size->is_array() && size->size() == 2) {
+            l.width = int(level.numberValue((*size)[0], "size[0]", 1, kMaxGridSide));
+            l.height = int(level.numberValue((*size)[1], "size[1]", 1, kMaxGridSide));
+        } else {
+            l.width = l.height = int(level.integer("size", 0, 1, kMaxGridSide));
+        }
+        l.steps = int(level.integer("steps", 0, 0, 100000000));
+        levels.push_back(l);
+    }
+    return levels;
+}
+
+// "stages" (Turk's cascades); the session's steps become their total.
+void readStages(const FieldReader& top, const json& stages, const ReactionModel& model,
+                Session& s) {
+    if (!s.schedule.empty())
+        top.failField("stages", "cannot be combined with a coarse-to-fine schedule");
+    s.stages = stagesFromJson(stages, top.source(), model);
+    s.steps = 0;
+    bool changesModel = false;
+    for (const Stage& stage : s.stages) {
+        s.steps += stage.steps;
+        changesModel = changesModel || !stage.model.empty();
+    }
+    // Anisotropic and generalized diffusion name the session model's chemicals.
+    if (changesModel && s.diffusion.type != DiffusionType::Isotropic)
+        top.failField("stages", "change the model, which needs isotropic diffusion (field "
+                                "'diffusion' has type '" +
+                                    toString(s.diffusion.type) + "')");
+}
+
+void readParamMaps(const FieldReader& top, const json& maps, const ReactionModel& model,
+                   Session& s) {
+    if (!s.schedule.empty())
+        top.failField("param_maps", "cannot be combined with a coarse-to-fine schedule");
+    s.paramMaps = paramMapsFromJson(maps, top.source(), model);
+    for (const Stage& stage : s.stages)
+        if (!stage.model.empty())
+            top.failField("param_maps", "cannot be combined with a stage that changes the "
+                                        "model (they are maps of model '" +
+                                            model.name() + "' parameters)");
+    for (const Stage& stage : s.stages)
+        for (const auto& [name, value] : stage.params)
+            if (s.paramMaps.count(name))
+                top.failField("stages", "change '" + name + "', which param_maps sets per cell");
+}
+
+// "colormap"; its chemical must be one of `shown`, the model of the final state.
+ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const ReactionModel& shown,
+                              bool lastStageModel) {
+    FieldReader reader(cm, top.source(), "colormap");
+    reader.rejectUnknown({"name", "chemical", "low", "high", "levels"});
+    ColorMapSpec spec;
+    spec.name = reader.string("name", spec.name);
+    spec.chemical = reader.string("chemical", "");
+    if (!spec.chemical.empty() && shown.chemicalIndex(spec.chemical) < 0)
+        reader.failField("chemical", "is '" + spec.chemical + "', not a chemical of model '" +
+                                         shown.name() + "'" +
+                                         (lastStageModel ? " (the last stage's model)" : ""));
+    spec.low = colour(reader, "low", spec.low);
+    spec.high = colour(reader, "high", spec.high);
+    if (const json* levels = reader.find("levels")) {
+        if (!levels->is_array() || levels->size() != 2)
+            reader.failField("levels", "must be an array [low, high] with 0 <= low < high <= 1");
+        for (std::size_t i = 0; i < 2; ++i)
+            spec.levels[i] =
+                float(reader.numberValue((*levels)[i], "levels[" + std::to_string(i) + "]", 0, 1));
+        if (!(spec.levels[0] < spec.levels[1]))
+            reader.failField("levels", "must be an array [low, high] with 0 <= low < high <= 1");
+    }
+    return spec;
+}
+
+} // namespace
+
 Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
     top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
@@ -66,56 +202,16 @@ Session sessionFromJson(const json& root, const std::string& source) {
     if (!model)
         top.failField("model",
                       "is '" + s.model + "', not a known model (known: " + modelNames() + ")");
-
-    for (const ParamSpec& p : model->params())
-        s.params[p.name] = p.defaultValue;
-    if (const json* params = top.find("params")) {
-        FieldReader reader(*params, source, "params");
-        for (auto it = params->begin(); it != params->end(); ++it) {
-            const ParamSpec* spec = model->param(it.key());
-            if (!spec)
-                reader.fail("field 'params." + it.key() + "'",
-                            "is not a parameter of model '" + model->name() +
-                                "' (parameters: " + model->paramNames() + ")");
-            s.params[it.key()] = float(reader.numberValue(*it, it.key(), spec->min, spec->max));
-        }
-    }
-
-    if (const json* size = top.find("size")) {
-        if (size->is_number_integer()) {
-            s.width = s.height = int(top.integer("size", 0, 1, kMaxGridSide));
-        } else if (size->is_array() && size->size() == 2) {
-            FieldReader dummy(json::object(), source, "");
-            s.width = int(dummy.numberValue((*size)[0], "size[0]", 1, kMaxGridSide));
-            s.height = int(dummy.numberValue((*size)[1], "size[1]", 1, kMaxGridSide));
-            if (!(*size)[0].is_number_integer() || !(*size)[1].is_number_integer())
-                top.failField("size", "must hold integers");
-        } else {
-            top.failField("size", "must be an integer N or an array [W, H], got " + size->dump());
-        }
-    }
-
-    const std::string edges = top.string("edges", "periodic");
-    if (edges == "periodic")
-        s.edges = EdgeMode::Periodic;
-    else if (edges == "clamped")
-        s.edges = EdgeMode::Clamped;
-    else
-        top.failField("edges", "is '" + edges + "', accepted: periodic, clamped");
+    s.params = paramsFromJson(top, *model);
+    readSize(top, s);
+    s.edges = top.choice("edges", s.edges, parseEdgeMode, edgeModeNames());
 
     // Like "init", a session's "diffusion" replaces the model's default whole.
     s.diffusion = model->defaultDiffusion();
     if (const json* diffusion = top.find("diffusion"))
         s.diffusion = diffusionFromJson(*diffusion, source, *model);
 
-    const std::string integrator = top.string("integrator", "explicit_euler");
-    if (integrator == "explicit_euler")
-        s.integrator = Integrator::ExplicitEuler;
-    else if (integrator == "semi_implicit")
-        s.integrator = Integrator::SemiImplicit;
-    else
-        top.failField("integrator",
-                      "is '" + integrator + "', accepted: explicit_euler, semi_implicit");
+    s.integrator = top.choice("integrator", s.integrator, parseIntegrator, integratorNames());
     // "jacobi_sweeps" is the name sessions written before the rename use.
     s.relaxationPasses = int(top.integer("jacobi_sweeps", s.relaxationPasses, 1, 1000));
     s.relaxationPasses = int(top.integer("relaxation_passes", s.relaxationPasses, 1, 1000));
@@ -124,57 +220,12 @@ Session sessionFromJson(const json& root, const std::string& source) {
     s.steps = int(top.integer("steps", s.steps, 0, 100000000));
     s.seed = std::uint64_t(top.integer("seed", 1, 0, (1LL << 53)));
 
-    if (const json* schedule = top.find("schedule")) {
-        if (!schedule->is_array() || schedule->empty())
-            top.failField("schedule", "must be a non-empty array of {\"size\": N or [W, H], "
-                                      "\"steps\": N}, coarsest first");
-        for (std::size_t i = 0; i < schedule->size(); ++i) {
-            FieldReader level((*schedule)[i], source, "schedule[" + std::to_string(i) + "]");
-            level.rejectUnknown({"size", "steps"});
-            ScheduleLevel l;
-            const json* size = level.find("size");
-            if (size && size->is_array() && size->size() == 2) {
-                l.width = int(level.numberValue((*size)[0], "size[0]", 1, kMaxGridSide));
-                l.height = int(level.numberValue((*size)[1], "size[1]", 1, kMaxGridSide));
-            } else {
-                l.width = l.height = int(level.integer("size", 0, 1, kMaxGridSide));
-            }
-            l.steps = int(level.integer("steps", 0, 0, 100000000));
-            s.schedule.push_back(l);
-        }
-        applySchedule(s, s.schedule);
-    }
-    if (const json* stages = top.find("stages")) {
-        if (!s.schedule.empty())
-            top.failField("stages", "cannot be combined with a coarse-to-fine schedule");
-        s.stages = stagesFromJson(*stages, source, *model);
-        s.steps = 0;
-        bool changesModel = false;
-        for (const Stage& stage : s.stages) {
-            s.steps += stage.steps;
-            changesModel = changesModel || !stage.model.empty();
-        }
-        // Anisotropic and generalized diffusion name the session model's chemicals.
-        if (changesModel && s.diffusion.type != DiffusionType::Isotropic)
-            top.failField("stages", "change the model, which needs isotropic diffusion (field "
-                                    "'diffusion' has type '" +
-                                        toString(s.diffusion.type) + "')");
-    }
-    if (const json* maps = top.find("param_maps")) {
-        if (!s.schedule.empty())
-            top.failField("param_maps", "cannot be combined with a coarse-to-fine schedule");
-        s.paramMaps = paramMapsFromJson(*maps, source, *model);
-        for (const Stage& stage : s.stages)
-            if (!stage.model.empty())
-                top.failField("param_maps", "cannot be combined with a stage that changes the "
-                                            "model (they are maps of model '" +
-                                                model->name() + "' parameters)");
-        for (const Stage& stage : s.stages)
-            for (const auto& [name, value] : stage.params)
-                if (s.paramMaps.count(name))
-                    top.failField("stages",
-                                  "change '" + name + "', which param_maps sets per cell");
-    }
+    if (const json* schedule = top.find("schedule"))
+        applySchedule(s, scheduleFromJson(top, *schedule));
+    if (const json* stages = top.find("stages"))
+        readStages(top, *stages, *model, s);
+    if (const json* maps = top.find("param_maps"))
+        readParamMaps(top, *maps, *model, s);
 
     // A session's "init" replaces the model's default start whole: fields it
     // leaves out are empty, not inherited.
@@ -182,31 +233,9 @@ Session sessionFromJson(const json& root, const std::string& source) {
     if (const json* init = top.find("init"))
         s.init = initialConditionFromJson(*init, source, "init", *model);
 
-    if (const json* cm = top.find("colormap")) {
-        FieldReader reader(*cm, source, "colormap");
-        reader.rejectUnknown({"name", "chemical", "low", "high", "levels"});
-        s.colormap.name = reader.string("name", s.colormap.name);
-        s.colormap.chemical = reader.string("chemical", "");
-        // The colours show the final state: the last stage's model's chemicals.
-        const ReactionModel& shown = s.outputModel();
-        if (!s.colormap.chemical.empty() && shown.chemicalIndex(s.colormap.chemical) < 0)
-            reader.failField("chemical", "is '" + s.colormap.chemical +
-                                             "', not a chemical of model '" + shown.name() + "'" +
-                                             (&shown != model ? " (the last stage's model)" : ""));
-        s.colormap.low = colour(reader, "low", s.colormap.low);
-        s.colormap.high = colour(reader, "high", s.colormap.high);
-        if (const json* levels = reader.find("levels")) {
-            if (!levels->is_array() || levels->size() != 2)
-                reader.failField("levels",
-                                 "must be an array [low, high] with 0 <= low < high <= 1");
-            for (std::size_t i = 0; i < 2; ++i)
-                s.colormap.levels[i] = float(
-                    reader.numberValue((*levels)[i], "levels[" + std::to_string(i) + "]", 0, 1));
-            if (!(s.colormap.levels[0] < s.colormap.levels[1]))
-                reader.failField("levels",
-                                 "must be an array [low, high] with 0 <= low < high <= 1");
-        }
-    }
+    // The colours show the final state: the last stage's model's chemicals.
+    if (const json* cm = top.find("colormap"))
+        s.colormap = colormapFromJson(top, *cm, s.outputModel(), &s.outputModel() != model);
     return s;
 }
 

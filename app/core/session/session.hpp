@@ -2,7 +2,9 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -21,6 +23,9 @@ enum class Integrator {
     SemiImplicit,  // (I - dt A) c' = c + dt f(c), by relaxation passes   (McGraw eq. 28)
 };
 std::string toString(Integrator integrator);
+// toString's spellings; std::nullopt for others. integratorNames() lists them.
+std::optional<Integrator> parseIntegrator(std::string_view name);
+std::string integratorNames();
 
 // One level of a coarse-to-fine schedule (Witkin-Kass 5.2; McGraw's
 // 64 -> 128 -> 256): the grid size and the steps run at it.
