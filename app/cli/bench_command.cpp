@@ -56,8 +56,8 @@ double measure(Run&& run, Finish&& finish, double seconds, int batch) {
 }
 
 // McGraw's Table 2 set (e), measured beside operatorVariants' set (c): ranks 2
-// and 4 only, so its 5x5 kernel is centrally symmetric, which set (c)'s, with
-// rank-3 terms, is not.
+// and 4 only, so its 5x5 kernel is centrally symmetric and the CPU sums it
+// folded (cpu_kernels.hpp), which set (c)'s, with rank-3 terms, is not.
 std::pair<std::string, Session> evenKernelVariant(const Session& base) {
     Session even = base;
     even.diffusion.type = DiffusionType::Generalized;

@@ -10,6 +10,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 #include <omp.h>
 
@@ -89,26 +90,44 @@ void laplacianRow(const float* up, const float* row, const float* down, float* o
     }
 }
 
-// Sum of a (3x3 or 5x5) kernel's taps over one row of one plane.
-void kernelRow(const Kernel5& kernel, int radius, const float* plane, int w, int h, int y,
-               EdgeMode edges, float* out) {
+// Sum of a (3x3 or 5x5) kernel's taps over one row of one plane, in
+// kernelTaps()' order and folding, as the fused kernels sum them (which adds
+// the zero taps skipped here: only infinite neighbours could tell).
+void kernelRow(const KernelTaps& taps, const float* plane, int w, int h, int y, EdgeMode edges,
+               float* out) {
     std::fill(out, out + w, 0.0f);
-    for (int dy = -radius; dy <= radius; ++dy) {
-        const float* row = plane + std::size_t(GridDomain::wrapOrClamp(y + dy, h, edges)) * w;
-        for (int dx = -radius; dx <= radius; ++dx) {
-            const float weight = float(kernel.at(dx, dy));
-            if (weight == 0.0f)
-                continue;
-            // Interior columns are unit-stride; the few edge columns wrap or clamp.
-            const int x0 = std::min(radius, w), x1 = std::max(x0, w - radius);
+    const auto rowAt = [&](int dy) {
+        return plane + std::size_t(GridDomain::wrapOrClamp(y + dy, h, edges)) * w;
+    };
+    const auto column = [&](int x) { return GridDomain::wrapOrClamp(x, w, edges); };
+    for (int i = 0; i < taps.count; ++i) {
+        const KernelTap tap = taps.taps[std::size_t(i)];
+        if (tap.weight == 0.0f)
+            continue;
+        const int dx = tap.dx, reach = std::abs(dx);
+        const float weight = tap.weight;
+        const float* row = rowAt(tap.dy);
+        // Interior columns are unit-stride; the few edge columns wrap or clamp.
+        const int x0 = std::min(reach, w), x1 = std::max(x0, w - reach);
+        auto edgeColumns = [&](const auto& value) {
+            for (int x = 0; x < x0; ++x)
+                out[x] += value(x);
+            for (int x = x1; x < w; ++x)
+                out[x] += value(x);
+        };
+        if (!taps.folded || i == 0) {
 #pragma omp simd
             for (int x = x0; x < x1; ++x)
                 out[x] += weight * row[x + dx];
-            for (int x = 0; x < x0; ++x)
-                out[x] += weight * row[GridDomain::wrapOrClamp(x + dx, w, edges)];
-            for (int x = x1; x < w; ++x)
-                out[x] += weight * row[GridDomain::wrapOrClamp(x + dx, w, edges)];
+            edgeColumns([&](int x) { return weight * row[column(x + dx)]; });
+            continue;
         }
+        // The tap and its point mirror: w * (c(dx, dy) + c(-dx, -dy)).
+        const float* mirror = rowAt(-tap.dy);
+#pragma omp simd
+        for (int x = x0; x < x1; ++x)
+            out[x] += weight * (row[x + dx] + mirror[x - dx]);
+        edgeColumns([&](int x) { return weight * (row[column(x + dx)] + mirror[column(x - dx)]); });
     }
 }
 
@@ -248,8 +267,7 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
     }
     case DiffusionOperator::Form::Kernel3:
     case DiffusionOperator::Form::Kernel5:
-        kernelRow(op.kernels[std::size_t(c)], op.form == DiffusionOperator::Form::Kernel3 ? 1 : 2,
-                  plane, w, h, y, edges, out);
+        kernelRow(kernelTaps(op, c), plane, w, h, y, edges, out);
         return;
     case DiffusionOperator::Form::TensorMap:
         tensorMapRow(op, c, plane, w, h, y, edges, out);
