@@ -1,6 +1,7 @@
 // The CPU backend's 3x3 and 5x5 kernel sums: which kernels are folded into
 // pair sums, that both paths (fused and generic) compute the convolution,
-// and that they agree with each other bit for bit.
+// and that they agree with each other bit for bit; and the fused kernels'
+// model dispatch.
 
 #include <cmath>
 #include <cstdint>
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/models/gray_scott.hpp"
 #include "core/sim/cpu_kernels.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "test_support.hpp"
@@ -183,4 +185,32 @@ TEST(CpuKernels, FusedAndGenericPathsAgreeBitForBit) {
             EXPECT_LT(test::maxAbsDifference(fused, slow), 1e-5f);
 #endif
         }
+}
+
+namespace {
+// Not a built-in model, though it is one by inheritance.
+class DerivedGrayScott : public GrayScottModel {};
+} // namespace
+
+// The fused kernels' model dispatch reads the same list as the registry
+// (builtin_models.hpp): every registered model of up to four chemicals gets
+// a fused reaction pass, and a model that is not on the list gets none.
+TEST(CpuKernels, EveryRegisteredModelHasItsFusedKernels) {
+    for (const ReactionModel* model : allModels()) {
+        SCOPED_TRACE(model->name());
+        Session s;
+        s.model = model->name();
+        for (const ParamSpec& p : model->params())
+            s.params[p.name] = p.defaultValue;
+        s.width = s.height = 8;
+        const StepConstants k = StepConstants::fromSession(s);
+        EXPECT_EQ(fusedRhsPass(*model, k) != nullptr, model->chemicals().size() <= 4);
+        EXPECT_EQ(findModel(model->name()), model);
+    }
+    const DerivedGrayScott derived;
+    Session s = test::smallSession("gs_coral", 8, 1);
+    const StepConstants k = StepConstants::fromSession(s);
+    ASSERT_NE(fusedRhsPass(s.reactionModel(), k), nullptr);
+    EXPECT_EQ(fusedRhsPass(derived, k), nullptr);
+    EXPECT_EQ(fusedExplicitStep(derived, k), nullptr);
 }

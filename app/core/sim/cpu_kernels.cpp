@@ -4,14 +4,10 @@
 #include <array>
 #include <cassert>
 #include <cstddef>
+#include <type_traits>
 #include <utility>
 
-#include "core/models/gray_scott.hpp"
-#include "core/models/meinhardt_stripes.hpp"
-#include "core/models/turing_mcgraw.hpp"
-#include "core/models/turing_turk.hpp"
-#include "core/models/witkin_kass.hpp"
-#include "core/models/witkin_kass_multi.hpp"
+#include "core/models/builtin_models.hpp"
 
 // GCC builds an AVX2 copy of each fused kernel beside the baseline x86-64
 // (SSE2) one and picks per machine when the program loads, so one binary
@@ -332,29 +328,12 @@ template <class T> struct Tag { using Type = T; };
 
 // Calls pick(Tag<Model::Cell>) for the built-in model `model` is; null for others.
 template <class Pick> StepRowsKernel withCell(const ReactionModel& model, const Pick& pick) {
-    if (dynamic_cast<const GrayScottModel*>(&model) != nullptr)
-        return pick(Tag<GrayScottModel::Cell>());
-    if (dynamic_cast<const TuringTurkModel*>(&model) != nullptr)
-        return pick(Tag<TuringTurkModel::Cell>());
-    if (dynamic_cast<const TuringMcGrawModel*>(&model) != nullptr)
-        return pick(Tag<TuringMcGrawModel::Cell>());
-    if (dynamic_cast<const WitkinKassModel*>(&model) != nullptr)
-        return pick(Tag<WitkinKassModel::Cell>());
-    if (dynamic_cast<const MeinhardtStripesModel*>(&model) != nullptr)
-        return pick(Tag<MeinhardtStripesModel::Cell>());
-    if (dynamic_cast<const WitkinKassMd2*>(&model) != nullptr)
-        return pick(Tag<WitkinKassMd2::Cell>());
-    if (dynamic_cast<const WitkinKassMd3*>(&model) != nullptr)
-        return pick(Tag<WitkinKassMd3::Cell>());
-    if (dynamic_cast<const WitkinKassMd5*>(&model) != nullptr)
-        return pick(Tag<WitkinKassMd5::Cell>());
-    if (dynamic_cast<const WitkinKassDa2*>(&model) != nullptr)
-        return pick(Tag<WitkinKassDa2::Cell>());
-    if (dynamic_cast<const WitkinKassDa3*>(&model) != nullptr)
-        return pick(Tag<WitkinKassDa3::Cell>());
-    if (dynamic_cast<const WitkinKassDa5*>(&model) != nullptr)
-        return pick(Tag<WitkinKassDa5::Cell>());
-    return nullptr;
+    StepRowsKernel kernel = nullptr;
+    visitBuiltinModel(model, [&](const auto& builtin) {
+        using Model = std::decay_t<decltype(builtin)>;
+        kernel = pick(Tag<typename Model::Cell>());
+    });
+    return kernel;
 }
 
 // Beyond four chemicals stepRows' per-cell arrays stop vectorising (GCC keeps
