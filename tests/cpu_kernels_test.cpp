@@ -91,6 +91,7 @@ TEST(CpuKernels, EvenKernelsFoldAndOthersDoNot) {
         const int side = c.fiveByFive ? 5 : 3;
         const KernelTaps taps = kernelTaps(k.op, 0);
         EXPECT_EQ(taps.folded, c.folded);
+        EXPECT_EQ(taps.radius, c.fiveByFive ? 2 : 1);
         EXPECT_EQ(taps.count, c.folded ? (side * side + 1) / 2 : side * side);
         EXPECT_EQ(taps.taps[0].dx, 0);
         EXPECT_EQ(taps.taps[0].dy, 0);

@@ -104,6 +104,7 @@ template <int R> KernelTaps tapsOf(const Kernel5& kernel, bool folded) {
     constexpr int side = 2 * R + 1;
     KernelTaps taps;
     taps.folded = folded;
+    taps.radius = R;
     const auto add = [&](int i) {
         const int dx = i % side - R, dy = i / side - R;
         taps.taps[std::size_t(taps.count++)] = {dx, dy, float(kernel.at(dx, dy))};

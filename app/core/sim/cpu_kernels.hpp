@@ -28,7 +28,8 @@ struct KernelTap {
 };
 struct KernelTaps {
     bool folded = false;
-    int count = 0; // taps[0, count) in summation order
+    int radius = 1; // 1: 3x3, 2: 5x5
+    int count = 0;  // taps[0, count) in summation order
     std::array<KernelTap, 25> taps{};
 };
 bool foldsKernels(const DiffusionOperator& op);

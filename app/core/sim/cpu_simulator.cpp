@@ -10,7 +10,6 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 
 #include <omp.h>
 
@@ -92,9 +91,13 @@ void laplacianRow(const float* up, const float* row, const float* down, float* o
 
 // Sum of a (3x3 or 5x5) kernel's taps over one row of one plane, in
 // kernelTaps()' order and folding, as the fused kernels sum them (which adds
-// the zero taps skipped here: only infinite neighbours could tell).
+// the zero taps skipped here: only infinite neighbours could tell). R a
+// constant and the bounds set inside the tap loop: GCC's code for either
+// change measured ~20% slower (6 chemicals, 128^2, one thread).
+template <int R>
 void kernelRow(const KernelTaps& taps, const float* plane, int w, int h, int y, EdgeMode edges,
                float* out) {
+    assert(taps.radius == R);
     std::fill(out, out + w, 0.0f);
     const auto rowAt = [&](int dy) {
         return plane + std::size_t(GridDomain::wrapOrClamp(y + dy, h, edges)) * w;
@@ -104,11 +107,11 @@ void kernelRow(const KernelTaps& taps, const float* plane, int w, int h, int y, 
         const KernelTap tap = taps.taps[std::size_t(i)];
         if (tap.weight == 0.0f)
             continue;
-        const int dx = tap.dx, reach = std::abs(dx);
+        const int dx = tap.dx;
         const float weight = tap.weight;
         const float* row = rowAt(tap.dy);
         // Interior columns are unit-stride; the few edge columns wrap or clamp.
-        const int x0 = std::min(reach, w), x1 = std::max(x0, w - reach);
+        const int x0 = std::min(R, w), x1 = std::max(x0, w - R);
         auto edgeColumns = [&](const auto& value) {
             for (int x = 0; x < x0; ++x)
                 out[x] += value(x);
@@ -176,6 +179,10 @@ CpuSimulator::CpuSimulator(const Session& session)
     m_explicitStep = fusedExplicitStep(m_model, m_k);
     m_rhsPass = fusedRhsPass(m_model, m_k);
     m_relax = fusedRelaxation(m_k);
+    if (m_k.op.form == DiffusionOperator::Form::Kernel3 ||
+        m_k.op.form == DiffusionOperator::Form::Kernel5)
+        for (int c = 0; c < m_k.chemicals; ++c)
+            m_kernelTaps[std::size_t(c)] = kernelTaps(m_k.op, c);
 }
 
 void CpuSimulator::setState(const State& state) {
@@ -267,7 +274,10 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
     }
     case DiffusionOperator::Form::Kernel3:
     case DiffusionOperator::Form::Kernel5:
-        kernelRow(kernelTaps(op, c), plane, w, h, y, edges, out);
+        if (op.form == DiffusionOperator::Form::Kernel3)
+            kernelRow<1>(m_kernelTaps[std::size_t(c)], plane, w, h, y, edges, out);
+        else
+            kernelRow<2>(m_kernelTaps[std::size_t(c)], plane, w, h, y, edges, out);
         return;
     case DiffusionOperator::Form::TensorMap:
         tensorMapRow(op, c, plane, w, h, y, edges, out);
