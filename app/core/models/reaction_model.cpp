@@ -1,13 +1,8 @@
 #include "core/models/reaction_model.hpp"
 
-#include <cassert>
+#include <tuple>
 
-#include "core/models/gray_scott.hpp"
-#include "core/models/meinhardt_stripes.hpp"
-#include "core/models/turing_mcgraw.hpp"
-#include "core/models/turing_turk.hpp"
-#include "core/models/witkin_kass.hpp"
-#include "core/models/witkin_kass_multi.hpp"
+#include "core/models/builtin_models.hpp"
 
 namespace morphogen {
 
@@ -58,21 +53,15 @@ std::vector<float> ReactionModel::packParams(const ParamValues& values) const {
 
 void ReactionModel::prepareState(State&, const ParamValues&, std::uint64_t) const {}
 
+namespace {
+template <class... Models> std::vector<const ReactionModel*> instances(ModelList<Models...>) {
+    static const std::tuple<Models...> models;
+    return {&std::get<Models>(models)...};
+}
+} // namespace
+
 std::vector<const ReactionModel*> allModels() {
-    static const GrayScottModel grayScott;
-    static const TuringTurkModel turingTurk;
-    static const TuringMcGrawModel turingMcGraw;
-    static const WitkinKassModel witkinKass;
-    static const MeinhardtStripesModel meinhardtStripes;
-    static const WitkinKassMd2 witkinKassMd2;
-    static const WitkinKassMd3 witkinKassMd3;
-    static const WitkinKassMd5 witkinKassMd5;
-    static const WitkinKassDa2 witkinKassDa2;
-    static const WitkinKassDa3 witkinKassDa3;
-    static const WitkinKassDa5 witkinKassDa5;
-    return {&grayScott,     &turingTurk,    &turingMcGraw,    &witkinKass,
-            &witkinKassMd2, &witkinKassMd3, &witkinKassMd5,   &witkinKassDa2,
-            &witkinKassDa3, &witkinKassDa5, &meinhardtStripes};
+    return instances(BuiltinModels());
 }
 
 const ReactionModel* findModel(const std::string& name) {

@@ -44,10 +44,11 @@ struct RowView {
     int n = 0;
 };
 
-// The C++ reaction of a model, one cell at a time. Each built-in model defines
-// one (GrayScottModel::Cell, ...) so the CPU backend can instantiate a fused
-// step kernel over it, with the reaction inlined into the stencil loop; a
-// virtual call per row and the row buffers between passes cost ~3x. A Cell has
+// The C++ reaction of a model, one cell at a time. Each built-in model (listed
+// in builtin_models.hpp) defines one (GrayScottModel::Cell, ...) so the CPU
+// backend can instantiate a fused step kernel over it, with the reaction
+// inlined into the stencil loop; a virtual call per row and the row buffers
+// between passes cost ~3x. A Cell has
 //   static constexpr int kChemicals;
 //   static constexpr bool diffuses(int chemical); // false: no diffusionParam
 //   explicit Cell(const float* params);           // packParams() layout
@@ -118,7 +119,7 @@ protected:
     DiffusionSpec m_defaultDiffusion;
 };
 
-// All built-in models, by name.
+// All built-in models (builtin_models.hpp lists them), by name.
 const ReactionModel* findModel(const std::string& name);
 std::vector<const ReactionModel*> allModels();
 // "gray_scott, turing_turk, ...": for error messages.

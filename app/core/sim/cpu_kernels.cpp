@@ -4,14 +4,10 @@
 #include <array>
 #include <cassert>
 #include <cstddef>
+#include <type_traits>
 #include <utility>
 
-#include "core/models/gray_scott.hpp"
-#include "core/models/meinhardt_stripes.hpp"
-#include "core/models/turing_mcgraw.hpp"
-#include "core/models/turing_turk.hpp"
-#include "core/models/witkin_kass.hpp"
-#include "core/models/witkin_kass_multi.hpp"
+#include "core/models/builtin_models.hpp"
 
 // GCC builds an AVX2 copy of each fused kernel beside the baseline x86-64
 // (SSE2) one and picks per machine when the program loads, so one binary
@@ -83,10 +79,51 @@ template <int R> constexpr std::array<int, (2 * R + 1) * (2 * R + 1)> tapOrder()
     return order;
 }
 
-// A chemical's 3x3 (R = 1) or 5x5 (R = 2) kernel, rate included, in float.
-// Zero taps are summed too, as on the GPU: skipping them would only differ
-// for infinite neighbours.
-template <int R> class KernelTerm {
+// The taps of tapOrder<R>() that come before their point mirror (tap i's
+// mirror is taps - 1 - i, in the same ring), in that order: each stands for
+// the pair in a folded sum.
+template <int R> constexpr std::array<int, (2 * R + 1) * (2 * R + 1) / 2> pairOrder() {
+    constexpr int taps = (2 * R + 1) * (2 * R + 1);
+    std::array<int, taps / 2> order{};
+    std::size_t n = 0;
+    for (int i : tapOrder<R>())
+        if (i < taps / 2)
+            order[n++] = i;
+    return order;
+}
+
+bool centrallySymmetric(const Kernel5& kernel) {
+    const std::size_t n = kernel.w.size();
+    for (std::size_t i = 0; i < n / 2; ++i)
+        if (float(kernel.w[i]) != float(kernel.w[n - 1 - i]))
+            return false;
+    return true;
+}
+
+template <int R> KernelTaps tapsOf(const Kernel5& kernel, bool folded) {
+    constexpr int side = 2 * R + 1;
+    KernelTaps taps;
+    taps.folded = folded;
+    taps.radius = R;
+    const auto add = [&](int i) {
+        const int dx = i % side - R, dy = i / side - R;
+        taps.taps[std::size_t(taps.count++)] = {dx, dy, float(kernel.at(dx, dy))};
+    };
+    add(tapOrder<R>()[0]);
+    if (folded)
+        for (int i : pairOrder<R>())
+            add(i);
+    else
+        for (std::size_t i = 1; i < tapOrder<R>().size(); ++i)
+            add(tapOrder<R>()[i]);
+    return taps;
+}
+
+// A chemical's 3x3 (R = 1) or 5x5 (R = 2) kernel, rate included, in float,
+// summed as kernelTaps() says (folded when Folded). Zero taps are summed too,
+// as on the GPU: the generic path's skipping them only differs for infinite
+// neighbours.
+template <int R, bool Folded> class KernelTerm {
 public:
     static constexpr int kRadius = R;
 
@@ -103,22 +140,36 @@ public:
     }
 
     template <class At> float operator()(const At& at) const {
-        return sum(at, std::make_index_sequence<kTaps - 1>());
+        if constexpr (Folded)
+            return sumPairs(at, std::make_index_sequence<kTaps / 2>());
+        else
+            return sum(at, std::make_index_sequence<kTaps - 1>());
     }
 
 private:
     static constexpr int kSide = 2 * R + 1;
     static constexpr int kTaps = kSide * kSide;
     static constexpr std::array<int, kTaps> kOrder = tapOrder<R>();
+    static constexpr std::array<int, kTaps / 2> kPairs = pairOrder<R>();
 
     template <int I, class At> float tap(const At& at) const {
         return m_weights[std::size_t(I)] * at(I % kSide - R, I / kSide - R);
     }
-    // A fold rather than a loop, so that every tap's offsets are constants
+    template <int I, class At> float pair(const At& at) const {
+        constexpr int dx = I % kSide - R, dy = I / kSide - R;
+        return m_weights[std::size_t(I)] * (at(dx, dy) + at(-dx, -dy));
+    }
+    // Folds rather than loops, so that every tap's offsets are constants
     // before the vectoriser runs.
     template <class At, std::size_t... I> float sum(const At& at, std::index_sequence<I...>) const {
         float s = tap<kOrder[0]>(at);
         ((s += tap<kOrder[I + 1]>(at)), ...);
+        return s;
+    }
+    template <class At, std::size_t... I>
+    float sumPairs(const At& at, std::index_sequence<I...>) const {
+        float s = tap<kOrder[0]>(at);
+        ((s += pair<kPairs[I]>(at)), ...);
         return s;
     }
 
@@ -278,29 +329,12 @@ template <class T> struct Tag { using Type = T; };
 
 // Calls pick(Tag<Model::Cell>) for the built-in model `model` is; null for others.
 template <class Pick> StepRowsKernel withCell(const ReactionModel& model, const Pick& pick) {
-    if (dynamic_cast<const GrayScottModel*>(&model) != nullptr)
-        return pick(Tag<GrayScottModel::Cell>());
-    if (dynamic_cast<const TuringTurkModel*>(&model) != nullptr)
-        return pick(Tag<TuringTurkModel::Cell>());
-    if (dynamic_cast<const TuringMcGrawModel*>(&model) != nullptr)
-        return pick(Tag<TuringMcGrawModel::Cell>());
-    if (dynamic_cast<const WitkinKassModel*>(&model) != nullptr)
-        return pick(Tag<WitkinKassModel::Cell>());
-    if (dynamic_cast<const MeinhardtStripesModel*>(&model) != nullptr)
-        return pick(Tag<MeinhardtStripesModel::Cell>());
-    if (dynamic_cast<const WitkinKassMd2*>(&model) != nullptr)
-        return pick(Tag<WitkinKassMd2::Cell>());
-    if (dynamic_cast<const WitkinKassMd3*>(&model) != nullptr)
-        return pick(Tag<WitkinKassMd3::Cell>());
-    if (dynamic_cast<const WitkinKassMd5*>(&model) != nullptr)
-        return pick(Tag<WitkinKassMd5::Cell>());
-    if (dynamic_cast<const WitkinKassDa2*>(&model) != nullptr)
-        return pick(Tag<WitkinKassDa2::Cell>());
-    if (dynamic_cast<const WitkinKassDa3*>(&model) != nullptr)
-        return pick(Tag<WitkinKassDa3::Cell>());
-    if (dynamic_cast<const WitkinKassDa5*>(&model) != nullptr)
-        return pick(Tag<WitkinKassDa5::Cell>());
-    return nullptr;
+    StepRowsKernel kernel = nullptr;
+    visitBuiltinModel(model, [&](const auto& builtin) {
+        using Model = std::decay_t<decltype(builtin)>;
+        kernel = pick(Tag<typename Model::Cell>());
+    });
+    return kernel;
 }
 
 // Beyond four chemicals stepRows' per-cell arrays stop vectorising (GCC keeps
@@ -322,9 +356,27 @@ template <class Cell, class Term> StepRowsKernel explicitIf(const StepConstants&
 
 } // namespace
 
+bool foldsKernels(const DiffusionOperator& op) {
+    if (op.form != DiffusionOperator::Form::Kernel3 && op.form != DiffusionOperator::Form::Kernel5)
+        return false;
+    for (int c = 0; c < op.chemicals; ++c)
+        if (!centrallySymmetric(op.kernels[std::size_t(c)]))
+            return false;
+    return true;
+}
+
+KernelTaps kernelTaps(const DiffusionOperator& op, int chemical) {
+    assert(op.form == DiffusionOperator::Form::Kernel3 ||
+           op.form == DiffusionOperator::Form::Kernel5);
+    const Kernel5& kernel = op.kernels[std::size_t(chemical)];
+    return op.form == DiffusionOperator::Form::Kernel3 ? tapsOf<1>(kernel, foldsKernels(op))
+                                                       : tapsOf<2>(kernel, foldsKernels(op));
+}
+
 StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants& k) {
     if (k.hasParamMaps())
         return nullptr;
+    const bool folded = foldsKernels(k.op);
     return withCell(model, [&](auto tag) -> StepRowsKernel {
         using Cell = typename decltype(tag)::Type;
         switch (k.op.form) {
@@ -333,9 +385,11 @@ StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants
         case DiffusionOperator::Form::Laplacian9:
             return explicitIf<Cell, LaplacianTerm<Stencil::NinePoint>>(k);
         case DiffusionOperator::Form::Kernel3:
-            return explicitIf<Cell, KernelTerm<1>>(k);
+            return folded ? explicitIf<Cell, KernelTerm<1, true>>(k)
+                          : explicitIf<Cell, KernelTerm<1, false>>(k);
         case DiffusionOperator::Form::Kernel5:
-            return explicitIf<Cell, KernelTerm<2>>(k);
+            return folded ? explicitIf<Cell, KernelTerm<2, true>>(k)
+                          : explicitIf<Cell, KernelTerm<2, false>>(k);
         case DiffusionOperator::Form::TensorMap:
             break;
         }
@@ -364,9 +418,11 @@ RelaxRowsKernel fusedRelaxation(const StepConstants& k) {
     case DiffusionOperator::Form::Laplacian9:
         return &relaxRows<LaplacianTerm<Stencil::NinePoint>>;
     case DiffusionOperator::Form::Kernel3:
-        return &relaxRows<KernelTerm<1>>;
+        return foldsKernels(k.op) ? &relaxRows<KernelTerm<1, true>>
+                                  : &relaxRows<KernelTerm<1, false>>;
     case DiffusionOperator::Form::Kernel5:
-        return &relaxRows<KernelTerm<2>>;
+        return foldsKernels(k.op) ? &relaxRows<KernelTerm<2, true>>
+                                  : &relaxRows<KernelTerm<2, false>>;
     case DiffusionOperator::Form::TensorMap:
         break;
     }

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+
 #include "core/models/reaction_model.hpp"
 #include "core/sim/simulator.hpp"
 
@@ -10,6 +12,28 @@ namespace morphogen {
 // one vectorised loop, and an AVX2 clone picked at run time. They cover the
 // homogeneous operators (Laplacian5/9, Kernel3/5) and the models with a Cell;
 // a null kernel means the caller's generic path must run.
+
+// How both CPU paths sum a Kernel3/Kernel5 operator's taps, so that the fused
+// kernels and the generic path agree bit for bit: the centre first, then each
+// ring outwards, row by row (glsl/step.frag's order). When every chemical's
+// kernel is centrally symmetric, each tap equal in float to its point mirror
+// (even-order terms only: Table 2 sets a, b, d, e, f and every Witkin-Kass
+// mask), the sum is folded: after the centre, each tap of the first half of a
+// ring stands for itself and its mirror, w * (c(dx, dy) + c(-dx, -dy)), 13
+// multiplies for a 5x5 kernel instead of 25 (5 instead of 9 for a 3x3). One
+// decision for all chemicals, because a fused kernel sums them all one way.
+struct KernelTap {
+    int dx = 0, dy = 0;
+    float weight = 0.0f;
+};
+struct KernelTaps {
+    bool folded = false;
+    int radius = 1; // 1: 3x3, 2: 5x5
+    int count = 0;  // taps[0, count) in summation order
+    std::array<KernelTap, 25> taps{};
+};
+bool foldsKernels(const DiffusionOperator& op);
+KernelTaps kernelTaps(const DiffusionOperator& op, int chemical);
 
 // Steps rows [y0, y1) of in into out.
 using StepRowsKernel = void (*)(const StepConstants& k, const State& in, State& out, int y0,

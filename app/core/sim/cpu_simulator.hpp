@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+
 #include "core/sim/cpu_kernels.hpp"
 #include "core/sim/simulator.hpp"
 
@@ -53,6 +55,8 @@ private:
     StepRowsKernel m_rhsPass = nullptr;
     RelaxRowsKernel m_relax = nullptr;
     StepConstants m_k;
+    // Kernel3/Kernel5: each chemical's taps as the generic path sums them.
+    std::array<KernelTaps, kMaxChemicals> m_kernelTaps{};
     State m_current;
     State m_next;
     State m_rhs;                              // SemiImplicit: c + dt f(c) of the step being solved
