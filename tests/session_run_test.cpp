@@ -276,6 +276,25 @@ TEST(LiveChanges, AGeneralizedKernelFromZeroRatesIsLive) {
     EXPECT_GT(test::maxAbsDifference(sim.state(), runFrom(still, middle, 20)), 1e-4f);
 }
 
+// The generic path (here forced by a param map) keeps its own copy of the
+// kernel taps; a live rate change must reach them too.
+TEST(LiveChanges, AKernelRateChangedOnTheGenericPathIsLive) {
+    Session s = smallCoral();
+    s.diffusion.type = DiffusionType::Generalized;
+    s.diffusion.generalized = {{"u", "c"}, {"v", "c"}};
+    s.paramMaps["F"] = {ParamMapSpec::Field::LinearX, 0.03f, 0.05f};
+    CpuSimulator sim(s);
+    sim.setState(initial(s));
+    sim.run(10);
+    const State middle = sim.state();
+    Session changed = s;
+    changed.params["Du"] = 0.5f * s.params.at("Du");
+    sim.setParams(changed.params);
+    sim.run(20);
+    EXPECT_EQ(test::maxAbsDifference(sim.state(), runFrom(changed, middle, 20)), 0.0f);
+    EXPECT_GT(test::maxAbsDifference(sim.state(), runFrom(s, middle, 20)), 1e-5f);
+}
+
 TEST(LiveChanges, DtChangedMidRunEqualsARunBuiltWithIt) {
     for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicit}) {
         Session s = smallCoral();
