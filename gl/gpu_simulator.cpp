@@ -25,6 +25,13 @@ void setChemicalVec4s(GLint location, const std::array<T, N>& v, int textures) {
     glUniform4fv(location, textures, packed.data());
 }
 
+// The sampler's wrap mode is the grid's edge rule: textureOffset then reads
+// neighbours with no index arithmetic (the fast path). Tiled grids fetch
+// inside the tile and do not depend on it.
+GLenum wrapMode(const Domain& domain) {
+    return domain.edges() == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+}
+
 } // namespace
 
 std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model, const StepConstants& k) {
@@ -116,7 +123,7 @@ GpuSimulator::GpuSimulator(const Session& session)
     : m_session(session), m_model(&session.reactionModel()),
       m_k(StepConstants::fromSession(session)),
       m_pingPong(session.width, session.height, stateFormat(m_k.chemicals),
-                 session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE,
+                 wrapMode(session.domain()),
                  stateTextures(m_k.chemicals)) {
     const DiffusionOperator& op = m_k.op;
     buildPrograms();
@@ -131,12 +138,12 @@ GpuSimulator::GpuSimulator(const Session& session)
     }
     if (m_k.hasParamMaps()) {
         m_paramMap = Texture2D(session.width, session.height, GL_RGBA32F);
-        m_paramMap.setWrap(session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+        m_paramMap.setWrap(wrapMode(session.domain()));
         m_paramMap.uploadRgba(m_k.paramMaps.toRgba());
     }
     if (op.form == DiffusionOperator::Form::TensorMap) {
         m_map = Texture2D(session.width, session.height, GL_RGBA32F);
-        m_map.setWrap(session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+        m_map.setWrap(wrapMode(session.domain()));
         m_map.uploadRgba(op.map.toRgba());
     }
 }
@@ -215,7 +222,7 @@ Program GpuSimulator::buildProgram(const char* pass) const {
     glUniform1i(program.uniform("uParamMap"), kParamMapUnit);
     glUniform1i(program.uniform("uFrozen"), kFrozenUnit);
     if (m_k.tiled())
-        glUniform2i(program.uniform("uTile"), m_k.tile[0], m_k.tile[1]);
+        glUniform2i(program.uniform("uTile"), m_k.domain.tileWidth(), m_k.domain.tileHeight());
 
     if (op.form == Form::Kernel3 || op.form == Form::Kernel5) {
         // Texture t's taps, one vec4 each, one component per chemical.

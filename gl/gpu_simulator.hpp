@@ -51,7 +51,7 @@ int stateTextures(int chemicals);
 // step program is assembled from glsl/fullscreen.vert, the model's reaction
 // snippet (glsl/models/NAME.glsl) and glsl/step.frag, with the diffusion
 // operator's form as a #define variant; parameters are uniforms and edges are the sampler's wrap
-// mode (or, for a Tiles param map, each tile wraps on its own: the TILES variant). run() issues
+// mode (on a tiled grid each tile wraps on its own: the TILES variant). run() issues
 // draws only: nothing is read back until state(). Needs a current context for its whole life.
 class GpuSimulator : public Simulator {
 public:

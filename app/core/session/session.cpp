@@ -25,6 +25,12 @@ std::string toString(EdgeMode mode) {
     return mode == EdgeMode::Periodic ? "periodic" : "clamped";
 }
 
+Domain Session::domain() const {
+    if (tiles.active())
+        return Domain::tiledGrid(width, height, tiles.columns, tiles.rows);
+    return GridDomain(width, height, edges);
+}
+
 const ReactionModel& Session::reactionModel() const {
     const ReactionModel* m = findModel(model);
     assert(m && "sessionFromJson rejects unknown models");
@@ -51,12 +57,41 @@ std::array<float, 3> colour(const FieldReader& reader, const std::string& key,
     return rgb;
 }
 
+// A batched sweep's tiles, checked against the rest of the session.
+TileGrid tilesFromJson(const json& j, const FieldReader& top, const Session& s,
+                       const ReactionModel& model) {
+    TileGrid tiles = tileGridFromJson(j, top.source(), model);
+    if (s.width % tiles.columns != 0 || s.height % tiles.rows != 0 ||
+        s.width / tiles.columns < 4 || s.height / tiles.rows < 4)
+        top.failField("tiles", "grid [" + std::to_string(tiles.columns) + ", " +
+                                   std::to_string(tiles.rows) + "] must split the " +
+                                   std::to_string(s.width) + " x " + std::to_string(s.height) +
+                                   " grid evenly into tiles of at least 4 x 4 cells");
+    if (s.edges != EdgeMode::Periodic)
+        top.failField("tiles", "need periodic edges (each tile wraps on its own)");
+    if (!s.schedule.empty())
+        top.failField("tiles", "cannot be combined with a coarse-to-fine schedule");
+    if (!s.paramMaps.empty())
+        top.failField("tiles", "cannot be combined with param_maps (tiles.params sets "
+                               "per-tile values)");
+    if (tiles.params.size() > 4)
+        top.failField("tiles", "may vary at most 4 parameters per tile");
+    for (const Stage& stage : s.stages) {
+        if (!stage.model.empty())
+            top.failField("tiles", "cannot be combined with a stage that changes the model");
+        for (const auto& [name, value] : stage.params)
+            if (tiles.params.count(name))
+                top.failField("stages", "change '" + name + "', which tiles sets per tile");
+    }
+    return tiles;
+}
+
 } // namespace
 
 Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
     top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
-                       "integrator", "relaxation_passes", "jacobi_sweeps", "schedule", "stages", "param_maps", "dt",
+                       "integrator", "relaxation_passes", "jacobi_sweeps", "schedule", "stages", "param_maps", "tiles", "dt",
                        "steps", "seed", "init", "colormap"});
     Session s;
     s.name = top.string("name", "");
@@ -176,6 +211,9 @@ Session sessionFromJson(const json& root, const std::string& source) {
                                   "change '" + name + "', which param_maps sets per cell");
     }
 
+    if (const json* tiles = top.find("tiles"))
+        s.tiles = tilesFromJson(*tiles, top, s, *model);
+
     // A session's "init" replaces the model's default start whole: fields it
     // leaves out are empty, not inherited.
     s.init = model->defaultInit();
@@ -228,6 +266,8 @@ json sessionToJson(const Session& s) {
         j["stages"] = stagesToJson(s.stages);
     if (!s.paramMaps.empty())
         j["param_maps"] = paramMapsToJson(s.paramMaps);
+    if (s.tiles.active())
+        j["tiles"] = tileGridToJson(s.tiles);
     if (!s.schedule.empty()) {
         j["schedule"] = json::array();
         for (const ScheduleLevel& l : s.schedule)

@@ -9,9 +9,10 @@
 
 #include "core/session/cascade.hpp"
 #include "core/models/diffusion_spec.hpp"
-#include "core/domain/grid_domain.hpp"
+#include "core/domain/domain.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/session/param_map.hpp"
+#include "core/session/tile_grid.hpp"
 #include "core/models/reaction_model.hpp"
 
 namespace morphogen {
@@ -66,6 +67,9 @@ struct Session {
     std::vector<Stage> stages;
     // Parameters that vary over the grid, by name.
     std::map<std::string, ParamMapSpec> paramMaps;
+    // A batched parameter sweep: the grid as independent tiles with per-tile
+    // parameter values (a TiledGrid domain). Inactive by default.
+    TileGrid tiles;
     // Cell size relative to the finest level (h); coarse levels have h > 1 and
     // their derivative kernels are scaled by 1/h^order. Set per level, not saved.
     double gridSpacing = 1.0;
@@ -76,7 +80,8 @@ struct Session {
     // by loadSessionFile, not serialised.
     std::string baseDir;
 
-    GridDomain domain() const { return {width, height, edges}; }
+    // The grid, or the tiled grid of a batched sweep.
+    Domain domain() const;
     const ReactionModel& reactionModel() const; // asserts a known model
     // The model whose chemicals the final state holds: the last stage's that
     // changes model (a cascade such as Turk's giraffe), else reactionModel().

@@ -89,25 +89,41 @@ void laplacianRow(const float* up, const float* row, const float* down, float* o
     }
 }
 
+// Calls segment(base, width, edges) for the column segments of a row: the
+// whole row on a grid, one periodic segment per tile on a tiled grid.
+template <class Segment> void forEachRowSegment(const Domain& domain, const Segment& segment) {
+    if (domain.kind() != DomainKind::TiledGrid) {
+        segment(0, domain.width(), domain.edges());
+        return;
+    }
+    for (int tx = 0; tx < domain.columns(); ++tx)
+        segment(tx * domain.tileWidth(), domain.tileWidth(), EdgeMode::Periodic);
+}
+
 // Sum of a (3x3 or 5x5) kernel's taps over one row of one plane.
-void kernelRow(const Kernel5& kernel, int radius, const float* plane, int w, int h, int y,
-               EdgeMode edges, float* out) {
+void kernelRow(const Kernel5& kernel, int radius, const float* plane, const Domain& domain, int y,
+               float* out) {
+    const int w = domain.width();
     std::fill(out, out + w, 0.0f);
     for (int dy = -radius; dy <= radius; ++dy) {
-        const float* row = plane + std::size_t(GridDomain::wrapOrClamp(y + dy, h, edges)) * w;
+        const float* row = plane + std::size_t(domain.neighbourRow(y, dy)) * w;
         for (int dx = -radius; dx <= radius; ++dx) {
             const float weight = float(kernel.at(dx, dy));
             if (weight == 0.0f)
                 continue;
-            // Interior columns are unit-stride; the few edge columns wrap or clamp.
-            const int x0 = std::min(radius, w), x1 = std::max(x0, w - radius);
+            forEachRowSegment(domain, [&](int base, int sw, EdgeMode edges) {
+                const float* r = row + base;
+                float* o = out + base;
+                // Interior columns are unit-stride; the few edge columns wrap or clamp.
+                const int x0 = std::min(radius, sw), x1 = std::max(x0, sw - radius);
 #pragma omp simd
-            for (int x = x0; x < x1; ++x)
-                out[x] += weight * row[x + dx];
-            for (int x = 0; x < x0; ++x)
-                out[x] += weight * row[GridDomain::wrapOrClamp(x + dx, w, edges)];
-            for (int x = x1; x < w; ++x)
-                out[x] += weight * row[GridDomain::wrapOrClamp(x + dx, w, edges)];
+                for (int x = x0; x < x1; ++x)
+                    o[x] += weight * r[x + dx];
+                for (int x = 0; x < x0; ++x)
+                    o[x] += weight * r[GridDomain::wrapOrClamp(x + dx, sw, edges)];
+                for (int x = x1; x < sw; ++x)
+                    o[x] += weight * r[GridDomain::wrapOrClamp(x + dx, sw, edges)];
+            });
         }
     }
 }
@@ -149,11 +165,6 @@ CpuSimulator::CpuSimulator(const Session& session)
     : m_model(session.reactionModel()), m_k(StepConstants::fromSession(session)),
       m_current(session.width, session.height, m_k.chemicals),
       m_next(session.width, session.height, m_k.chemicals) {
-    // Its kernels wrap at the grid's edges, not at tile edges: sweeps run
-    // each tile on its own CPU simulator instead (sweep.hpp: runTile).
-    if (m_k.tiled())
-        throw InputError("the cpu backend runs sweep tiles one by one, not a batched session; "
-                         "use --backend gpu for a batched sweep session");
     m_explicitStep = fusedExplicitStep(m_model, m_k);
     m_rhsPass = fusedRhsPass(m_model, m_k);
     m_relax = fusedRelaxation(m_k);
@@ -225,7 +236,7 @@ void CpuSimulator::step() {
 
 void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) const {
     const int w = m_current.width(), h = m_current.height();
-    const EdgeMode edges = m_k.domain.edges();
+    const Domain& domain = m_k.domain;
     const DiffusionOperator& op = m_k.op;
     switch (op.form) {
     case DiffusionOperator::Form::Laplacian5:
@@ -235,12 +246,15 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
             std::fill(out, out + w, 0.0f);
             return;
         }
-        laplacianRow(plane + std::size_t(GridDomain::wrapOrClamp(y - 1, h, edges)) * w,
-                     plane + std::size_t(y) * w,
-                     plane + std::size_t(GridDomain::wrapOrClamp(y + 1, h, edges)) * w, out, w,
-                     edges,
-                     op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
-                                                                    : Stencil::NinePoint);
+        const float* up = plane + std::size_t(domain.neighbourRow(y, -1)) * w;
+        const float* row = plane + std::size_t(y) * w;
+        const float* down = plane + std::size_t(domain.neighbourRow(y, 1)) * w;
+        const Stencil stencil = op.form == DiffusionOperator::Form::Laplacian5
+                                    ? Stencil::FivePoint
+                                    : Stencil::NinePoint;
+        forEachRowSegment(domain, [&](int base, int sw, EdgeMode edges) {
+            laplacianRow(up + base, row + base, down + base, out + base, sw, edges, stencil);
+        });
 #pragma omp simd
         for (int x = 0; x < w; ++x)
             out[x] = d * out[x];
@@ -249,10 +263,11 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
     case DiffusionOperator::Form::Kernel3:
     case DiffusionOperator::Form::Kernel5:
         kernelRow(op.kernels[std::size_t(c)], op.form == DiffusionOperator::Form::Kernel3 ? 1 : 2,
-                  plane, w, h, y, edges, out);
+                  plane, domain, y, out);
         return;
     case DiffusionOperator::Form::TensorMap:
-        tensorMapRow(op, c, plane, w, h, y, edges, out);
+        // fromSession refuses the tensor map on tiled grids and atlases.
+        tensorMapRow(op, c, plane, w, h, y, domain.edges(), out);
         return;
     }
 }

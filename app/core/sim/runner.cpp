@@ -10,7 +10,7 @@
 #include "core/models/initial_condition.hpp"
 #include "core/numerics/resample.hpp"
 #include "core/operators/stability.hpp"
-#include "core/sim/sweep.hpp"
+#include "core/sim/initial_state.hpp"
 
 namespace morphogen {
 
@@ -120,10 +120,7 @@ RunResult runSession(const Session& session, const SimulatorFactory& makeSimulat
         const Session& part = segments[i].session;
         const ReactionModel& model = part.reactionModel();
         if (i == 0)
-            // A batched sweep starts every tile from its own initial state.
-            state = isBatchedSweep(part) ? batchedInitialState(part)
-                                         : makeInitialState(part.init, model, part.params,
-                                                            part.width, part.height, part.seed);
+            state = initialState(part);
         else if (state.width() != part.width || state.height() != part.height)
             state = resampleBilinear(state, part.width, part.height, part.edges);
         // The rule reads the previous stage's result, with that stage's model.
