@@ -6,6 +6,8 @@
 #include <iterator>
 #include <string>
 
+#include "core/domain/atlas.hpp"
+
 namespace morphogen::gl {
 
 namespace {
@@ -141,6 +143,10 @@ GpuSimulator::GpuSimulator(const Session& session)
         m_paramMap.setWrap(wrapMode(session.domain()));
         m_paramMap.uploadRgba(m_k.paramMaps.toRgba());
     }
+    if (const Atlas* atlas = m_k.domain.atlasMap()) {
+        m_connectivity = Texture2D(atlas->width(), atlas->height(), GL_RGBA32UI);
+        m_connectivity.uploadRgbaUint(atlas->connectivityMap());
+    }
     if (op.form == DiffusionOperator::Form::TensorMap) {
         m_map = Texture2D(session.width, session.height, GL_RGBA32F);
         m_map.setWrap(wrapMode(session.domain()));
@@ -199,6 +205,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
     }
     if (m_k.tiled())
         defines.push_back("TILES");
+    if (m_k.domain.kind() == DomainKind::Atlas)
+        defines.push_back("ATLAS");
     if (pass)
         defines.push_back(pass);
     if (!m_frozenMask.empty())
@@ -223,6 +231,11 @@ Program GpuSimulator::buildProgram(const char* pass) const {
     glUniform1i(program.uniform("uFrozen"), kFrozenUnit);
     if (m_k.tiled())
         glUniform2i(program.uniform("uTile"), m_k.domain.tileWidth(), m_k.domain.tileHeight());
+    if (const Atlas* atlas = m_k.domain.atlasMap()) {
+        glUniform1i(program.uniform("uConnectivity"), kConnectivityUnit);
+        glUniform3i(program.uniform("uAtlas"), atlas->tileSize(), atlas->tilesPerRow(),
+                    atlas->tileCount());
+    }
 
     if (op.form == Form::Kernel3 || op.form == Form::Kernel5) {
         // Texture t's taps, one vec4 each, one component per chemical.
@@ -257,6 +270,8 @@ void GpuSimulator::bindAuxiliaryTextures() const {
         m_paramMap.bind(kParamMapUnit);
     if (m_frozen.id())
         m_frozen.bind(kFrozenUnit);
+    if (m_connectivity.id())
+        m_connectivity.bind(kConnectivityUnit);
 }
 
 void GpuSimulator::setState(const State& state) {

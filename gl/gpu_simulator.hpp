@@ -14,6 +14,7 @@ constexpr int kRhsUnits[] = {2, 7, 8};
 constexpr int kMapUnit = 1;
 constexpr int kParamMapUnit = 3;
 constexpr int kFrozenUnit = 4;
+constexpr int kConnectivityUnit = 9; // atlas domains: the RGBA32UI connectivity map
 
 // Two sets of `count` same-size float textures, each set behind one
 // framebuffer (multiple render targets); each pass samples the current set
@@ -87,6 +88,7 @@ private:
     Framebuffer m_rhsFramebuffer;
     Texture2D m_paramMap; // param_maps: up to 4 parameters per cell
     Texture2D m_frozen;   // cascades: 1 where a cell is frozen
+    Texture2D m_connectivity; // atlas domains: 4 neighbours per texel, x | y << 16
     std::vector<std::uint8_t> m_frozenMask;
 };
 

@@ -3,6 +3,7 @@
 // source owning name 0, whose destructor does nothing. Destructors never
 // throw and need the owning context current.
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,6 +69,8 @@ public:
     void bind(int unit) const;
     // Whole-texture upload/download of RGBA floats.
     void uploadRgba(const std::vector<float>& rgba);
+    // Whole-texture upload of an integer (GL_RGBA32UI) texture.
+    void uploadRgbaUint(const std::vector<std::uint32_t>& rgba);
     std::vector<float> downloadRgba() const;
 
 private:

@@ -1,5 +1,7 @@
 #include "core/domain/domain.hpp"
 
+#include "core/domain/atlas.hpp"
+
 namespace morphogen {
 
 std::string toString(DomainKind kind) {
@@ -20,6 +22,16 @@ Domain Domain::tiledGrid(int width, int height, int columns, int rows) {
     d.m_kind = DomainKind::TiledGrid;
     d.m_columns = columns;
     d.m_rows = rows;
+    return d;
+}
+
+Domain Domain::atlas(std::shared_ptr<const Atlas> atlas) {
+    assert(atlas);
+    // Edges mean nothing here: every step goes through the atlas, and an
+    // unglued tile edge is zero-flux.
+    Domain d(GridDomain(atlas->width(), atlas->height(), EdgeMode::Clamped));
+    d.m_kind = DomainKind::Atlas;
+    d.m_atlas = std::move(atlas);
     return d;
 }
 

@@ -12,6 +12,7 @@
 #include "core/base/embedded_files.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/json_fields.hpp"
+#include "core/domain/atlas.hpp"
 
 namespace morphogen {
 
@@ -26,9 +27,20 @@ std::string toString(EdgeMode mode) {
 }
 
 Domain Session::domain() const {
+    if (atlas)
+        return Domain::atlas(atlas);
     if (tiles.active())
         return Domain::tiledGrid(width, height, tiles.columns, tiles.rows);
     return GridDomain(width, height, edges);
+}
+
+void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas) {
+    assert(atlas);
+    session.width = atlas->width();
+    session.height = atlas->height();
+    session.schedule.clear();
+    session.tiles = TileGrid{};
+    session.atlas = std::move(atlas);
 }
 
 const ReactionModel& Session::reactionModel() const {

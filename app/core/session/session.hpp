@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -79,14 +80,21 @@ struct Session {
     // Folder that relative paths in the session (images) resolve against; set
     // by loadSessionFile, not serialised.
     std::string baseDir;
+    // A surface atlas to simulate on instead of the grid (Lo et al.): set by
+    // useAtlas from engine code (the mesh pipeline), not serialised. The grid
+    // is then the atlas texture (width x height) and its unused texels.
+    std::shared_ptr<const Atlas> atlas;
 
-    // The grid, or the tiled grid of a batched sweep.
+    // The grid, the tiled grid of a batched sweep, or the atlas.
     Domain domain() const;
     const ReactionModel& reactionModel() const; // asserts a known model
     // The model whose chemicals the final state holds: the last stage's that
     // changes model (a cascade such as Turk's giraffe), else reactionModel().
     const ReactionModel& outputModel() const;
 };
+
+// Runs the session on `atlas`: its size becomes the atlas texture's.
+void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas);
 
 // Largest accepted grid side; the GPU may allow less (checked at allocation).
 constexpr int kMaxGridSide = 16384;

@@ -13,6 +13,7 @@
 
 #include <omp.h>
 
+#include "core/domain/atlas.hpp"
 #include "core/sim/cpu_kernels.hpp"
 
 namespace morphogen {
@@ -165,6 +166,16 @@ CpuSimulator::CpuSimulator(const Session& session)
     : m_model(session.reactionModel()), m_k(StepConstants::fromSession(session)),
       m_current(session.width, session.height, m_k.chemicals),
       m_next(session.width, session.height, m_k.chemicals) {
+    if (const Atlas* atlas = m_k.domain.atlasMap()) {
+        for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+            if (!atlas->used(i))
+                m_unusedCells.push_back(i);
+        const std::vector<std::uint32_t>& border = atlas->borderCells();
+        for (int y = 0; y <= atlas->height(); ++y)
+            m_borderRows.push_back(std::size_t(
+                std::lower_bound(border.begin(), border.end(), atlas->cellAt(0, y)) -
+                border.begin()));
+    }
     m_explicitStep = fusedExplicitStep(m_model, m_k);
     m_rhsPass = fusedRhsPass(m_model, m_k);
     m_relax = fusedRelaxation(m_k);
@@ -196,6 +207,30 @@ void CpuSimulator::restoreFrozen() {
         float* to = m_next.plane(c);
         for (std::uint32_t i : m_frozenCells)
             to[i] = from[i];
+        for (std::uint32_t i : m_unusedCells)
+            to[i] = from[i];
+    }
+}
+
+void CpuSimulator::atlasLaplacianRow(const float* plane, int y, float* out) const {
+    const Atlas& atlas = *m_k.domain.atlasMap();
+    const int w = atlas.width(), h = atlas.height();
+    // Every texel on the texture's outer ring is a border or unused texel, so
+    // clamping there only keeps the reads inside; those results are replaced.
+    const float* up = plane + std::size_t(GridDomain::wrapOrClamp(y - 1, h, EdgeMode::Clamped)) * w;
+    const float* row = plane + std::size_t(y) * w;
+    const float* down =
+        plane + std::size_t(GridDomain::wrapOrClamp(y + 1, h, EdgeMode::Clamped)) * w;
+    laplacianRow(up, row, down, out, w, EdgeMode::Clamped, Stencil::FivePoint);
+    const std::vector<std::uint32_t>& border = atlas.borderCells();
+    const auto& neighbours = atlas.neighbours();
+    const std::size_t rowStart = std::size_t(y) * w;
+    for (std::size_t b = m_borderRows[std::size_t(y)]; b < m_borderRows[std::size_t(y) + 1]; ++b) {
+        const std::uint32_t cell = border[b];
+        const std::array<std::uint32_t, 4>& n = neighbours[cell];
+        // The interior loop's order: -x, +x, then the two vertical neighbours.
+        const float sides = plane[n[2]] + plane[n[0]] + plane[n[3]] + plane[n[1]];
+        out[cell - rowStart] = sides - 4.0f * plane[cell];
     }
 }
 
@@ -244,6 +279,14 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
         const float d = op.rates[std::size_t(c)];
         if (d == 0.0f) {
             std::fill(out, out + w, 0.0f);
+            return;
+        }
+        if (domain.kind() == DomainKind::Atlas) {
+            // fromSession allows only the 5-point Laplacian on an atlas.
+            atlasLaplacianRow(plane, y, out);
+#pragma omp simd
+            for (int x = 0; x < w; ++x)
+                out[x] = d * out[x];
             return;
         }
         const float* up = plane + std::size_t(domain.neighbourRow(y, -1)) * w;

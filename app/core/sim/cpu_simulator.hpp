@@ -48,6 +48,14 @@ private:
     State m_next;
     State m_rhs;                              // SemiImplicit: c + dt f(c) of the step being solved
     std::vector<std::uint32_t> m_frozenCells; // indices of frozen cells (cascades)
+    // Atlas domains: texels outside every tile (kept as they are, like frozen
+    // cells), and per row y the border cells borderCells()[m_borderRows[y],
+    // m_borderRows[y + 1]) that go through the index array.
+    std::vector<std::uint32_t> m_unusedCells;
+    std::vector<std::size_t> m_borderRows;
+    // The 5-point Laplacian of one atlas row: interior texels by +-1 / +-width
+    // in one vectorised loop, then the row's border texels by the index array.
+    void atlasLaplacianRow(const float* plane, int y, float* out) const;
 };
 
 } // namespace morphogen

@@ -77,9 +77,41 @@ void loadVaryingParams(StepConstants& k, const Session& session, Session& unitRa
     }
 }
 
-// Refuses operators the domain cannot run (see core/domain/domain.hpp).
+std::string operatorName(DiffusionOperator::Form form) {
+    using Form = DiffusionOperator::Form;
+    switch (form) {
+    case Form::Laplacian5:
+        return "isotropic 5-point Laplacian";
+    case Form::Laplacian9:
+        return "isotropic 9-point Laplacian (stencil 9-point)";
+    case Form::Kernel3:
+        return "anisotropic 3x3 tensor (Witkin-Kass)";
+    case Form::Kernel5:
+        return "generalized 5x5 kernel (McGraw)";
+    case Form::TensorMap:
+        return "anisotropic tensor map (diffusion map)";
+    }
+    return "diffusion";
+}
+
+// Refuses operators and integrators the domain cannot run (see core/domain/domain.hpp).
 void checkOperatorOnDomain(const StepConstants& k) {
     using Form = DiffusionOperator::Form;
+    if (k.domain.kind() == DomainKind::Atlas) {
+        // Only the four neighbours of the connectivity map are defined
+        // everywhere; diagonals and distance-2 taps are not at irregular corners.
+        if (k.op.form != Form::Laplacian5)
+            throw InputError("the " + operatorName(k.op.form) +
+                             " diffusion operator cannot run on an atlas domain (accepted there: "
+                             "isotropic diffusion with the 5-point stencil)");
+        if (k.integrator == Integrator::SemiImplicit)
+            throw InputError("the semi_implicit integrator cannot run on an atlas domain (its "
+                             "relaxation weight comes from a grid's Fourier symbol); use "
+                             "explicit_euler");
+        if (k.hasParamMaps())
+            throw InputError("param_maps (fields in grid x and y) cannot vary a parameter over an "
+                             "atlas domain");
+    }
     // Its map texture would need tile-local fetches too; sweeps of tensor
     // fields are left to one-by-one runs.
     if (k.tiled() && k.op.form == Form::TensorMap)
@@ -144,9 +176,9 @@ StepConstants StepConstants::fromSession(const Session& session) {
     Session unitRates = session; // a mapped diffusion rate is compiled at rate 1
     loadVaryingParams(k, session, unitRates);
     k.op = compileDiffusion(unitRates);
-    checkOperatorOnDomain(k);
     k.integrator = session.integrator;
     k.relaxationPasses = session.relaxationPasses;
+    checkOperatorOnDomain(k);
     if (k.integrator == Integrator::SemiImplicit)
         loadRelaxationWeights(k);
     loadClamps(k, model);

@@ -1,0 +1,182 @@
+// Simulations on atlas domains on the CPU: mass conservation, smooth
+// spreading across an irregular (valence-3) corner, agreement with the
+// periodic grid the periodic atlases stand for, untouched unused texels and
+// the refusal of operators an atlas cannot run.
+
+#include <algorithm>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "atlas_checks.hpp"
+#include "core/base/errors.hpp"
+#include "core/models/initial_condition.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "test_support.hpp"
+
+using namespace morphogen;
+
+namespace {
+
+State runOn(const Session& s, const State& start, int steps) {
+    CpuSimulator sim(s);
+    sim.setState(start);
+    sim.run(steps);
+    return sim.state();
+}
+
+void expectMassConserved(std::shared_ptr<const Atlas> atlas) {
+    const Session s = test::pureDiffusionSession(atlas);
+    const State start = test::randomUsedState(*atlas, 3);
+    const State end = runOn(s, start, 200);
+    const double before = test::usedSum(start, *atlas, 0), after = test::usedSum(end, *atlas, 0);
+    // Float rounding of 200 steps of ~1e3 cells: far below 1e-5 relative; a
+    // lost or doubled neighbour link would move mass by ~1e-2 relative or more.
+    EXPECT_NEAR(after, before, 1e-5 * before);
+    EXPECT_GT(test::maxAbsDifference(end, start), 0.05f) << "nothing diffused";
+}
+
+} // namespace
+
+TEST(AtlasCpu, DiffusionConservesMassOnTheCube) {
+    expectMassConserved(std::make_shared<const Atlas>(Atlas::cube(8)));
+}
+
+TEST(AtlasCpu, DiffusionConservesMassOnRotatedTiles) {
+    expectMassConserved(std::make_shared<const Atlas>(Atlas::rotatedTiles(8)));
+}
+
+TEST(AtlasCpu, BlobAtAValence3CornerSpreadsSymmetricallyAndSmoothly) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    ASSERT_EQ(atlas->cornerValence(0, 0), 3);
+    const std::vector<std::uint32_t> corner = test::cornerTexels(*atlas, 0);
+    State start(atlas->width(), atlas->height(), 2);
+    for (std::uint32_t c : corner)
+        start.plane(0)[c] = 1.0f;
+    const State end = runOn(test::pureDiffusionSession(atlas), start, 40);
+    const float* u = end.plane(0);
+    // The cube is symmetric under the 3-fold turn about this corner's
+    // diagonal: each of the three tiles holds the same mass and the same
+    // profile (only summation order differs, hence 1e-6).
+    std::vector<double> tileMass;
+    for (std::uint32_t c : corner) {
+        const int tile = atlas->tileOf(c);
+        double m = 0;
+        for (int v = 0; v < atlas->tileSize(); ++v)
+            for (int w = 0; w < atlas->tileSize(); ++w)
+                m += u[atlas->tileCell(tile, w, v)];
+        tileMass.push_back(m);
+    }
+    for (double m : tileMass)
+        EXPECT_NEAR(m, tileMass[0], 1e-6 * tileMass[0]);
+    for (std::uint32_t c : corner)
+        EXPECT_NEAR(u[c], u[corner[0]], 1e-6f);
+    // Smooth: no hole and no spike at the corner. Each corner texel holds the
+    // maximum and values fall monotonically along its tile's edges and diagonal.
+    for (std::uint32_t c : corner) {
+        for (Direction d : {Direction::PlusX, Direction::PlusY, Direction::MinusX,
+                            Direction::MinusY})
+            EXPECT_GE(u[c], u[atlas->step(c, d).cell]);
+        std::uint32_t previous = c;
+        for (int i = 0; i < 4; ++i) {
+            const std::uint32_t next = atlas->walk(previous, {Direction::PlusX, Direction::PlusY});
+            if (atlas->tileOf(next) != atlas->tileOf(c))
+                break;
+            EXPECT_GT(u[previous], u[next]);
+            previous = next;
+        }
+    }
+}
+
+TEST(AtlasCpu, PeriodicPlaneAtlasEqualsThePeriodicGrid) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::periodicPlane(8, 3, 2));
+    const Session onAtlas = test::atlasSession(atlas);
+    Session grid = onAtlas;
+    grid.atlas.reset();
+    ASSERT_EQ(grid.domain().kind(), DomainKind::Grid);
+    const State start = makeInitialState(grid.init, grid.reactionModel(), grid.params, grid.width,
+                                         grid.height, 5);
+    const State a = runOn(onAtlas, start, 100), g = runOn(grid, start, 100);
+    // The same sums in the same order (-x, +x, -y, +y), so bit for bit.
+    EXPECT_EQ(test::maxAbsDifference(a, g), 0.0f);
+    EXPECT_GT(test::maxAbsDifference(a, start), 1e-3f);
+}
+
+TEST(AtlasCpu, RotatedTilesEqualThePeriodicGridTheyStandFor) {
+    const int n = 8;
+    auto atlas = std::make_shared<const Atlas>(Atlas::rotatedTiles(n));
+    const std::vector<std::uint32_t> planeCell = Atlas::rotatedTilesPlaneCells(n);
+    Session grid = test::atlasSession(atlas);
+    grid.atlas.reset();
+    grid.width = grid.height = 3 * n;
+    const State gridStart = makeInitialState(grid.init, grid.reactionModel(), grid.params,
+                                             grid.width, grid.height, 9);
+    State atlasStart(atlas->width(), atlas->height(), 2);
+    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+        for (int c = 0; c < 2; ++c)
+            atlasStart.plane(c)[i] = gridStart.plane(c)[planeCell[i]];
+    const State a = runOn(test::atlasSession(atlas), atlasStart, 100);
+    const State g = runOn(grid, gridStart, 100);
+    // Turned tiles sum their four neighbours in another order: rounding only.
+    float worst = 0;
+    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+        for (int c = 0; c < 2; ++c)
+            worst = std::max(worst, std::fabs(a.plane(c)[i] - g.plane(c)[planeCell[i]]));
+    EXPECT_LT(worst, 1e-5f * test::maxAbsValue(g));
+    EXPECT_GT(test::maxAbsDifference(g, gridStart), 1e-3f);
+}
+
+TEST(AtlasCpu, UnusedTexelsStayUntouched) {
+    // Three tiles in a 2 x 2 layout: the fourth tile's texels are unused.
+    auto open = std::make_shared<Atlas>(8, 3, 2);
+    open->glue(0, TileEdge::PlusX, 1, TileEdge::MinusX);
+    open->glue(0, TileEdge::PlusY, 2, TileEdge::MinusY);
+    const std::shared_ptr<const Atlas> atlas = open;
+    const State start = test::randomUsedState(*atlas, 4);
+    const State end = runOn(test::pureDiffusionSession(atlas), start, 50);
+    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+        if (!atlas->used(i)) {
+            ASSERT_EQ(end.plane(0)[i], 7.0f);
+            ASSERT_EQ(end.plane(1)[i], 7.0f);
+        }
+    // Unglued edges are zero-flux: the mass stays.
+    EXPECT_NEAR(test::usedSum(end, *atlas, 0), test::usedSum(start, *atlas, 0),
+                1e-5 * test::usedSum(start, *atlas, 0));
+}
+
+namespace {
+
+std::string refusal(const Session& s) {
+    try {
+        CpuSimulator sim(s);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+} // namespace
+
+TEST(AtlasCpu, OperatorsAnAtlasCannotRunAreRefusedByName) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    Session nine = test::atlasSession(atlas);
+    nine.diffusion.stencil = Stencil::NinePoint;
+    EXPECT_NE(refusal(nine).find("9-point Laplacian (stencil 9-point) diffusion operator cannot "
+                                 "run on an atlas domain"),
+              std::string::npos)
+        << refusal(nine);
+    for (const char* preset : {"wk_zebra", "gs_generalized_c", "wk_spiral_stripes"}) {
+        Session s = loadPreset(preset);
+        useAtlas(s, atlas);
+        const std::string message = refusal(s);
+        EXPECT_NE(message.find("cannot run on an atlas domain (accepted there: isotropic "
+                               "diffusion with the 5-point stencil)"),
+                  std::string::npos)
+            << preset << ": " << message;
+    }
+    Session implicit = test::atlasSession(atlas);
+    implicit.integrator = Integrator::SemiImplicit;
+    EXPECT_NE(refusal(implicit).find("semi_implicit integrator cannot run on an atlas domain"),
+              std::string::npos)
+        << refusal(implicit);
+}
