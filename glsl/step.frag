@@ -102,8 +102,8 @@ ivec2 tileNeighbour(int dx, int dy) {
 uniform usampler2D uConnectivity;
 uniform ivec3 uAtlas; // texels per tile side, tiles per row, tile count
 bool gAtlasBorder;    // this fragment's texel is on its tile's border ring
-ivec2 unpackTexel(uint packed) {
-    return ivec2(int(packed & 0xFFFFu), int(packed >> 16));
+ivec2 unpackTexel(uint address) {
+    return ivec2(int(address & 0xFFFFu), int(address >> 16));
 }
 // 0: outside every tile, 1: inside a tile, 2: on a tile's border ring.
 int atlasTexel() {
