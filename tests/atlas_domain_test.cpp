@@ -10,7 +10,9 @@
 
 #include "atlas_checks.hpp"
 #include "core/base/errors.hpp"
+#include "core/analysis/pattern_classifier.hpp"
 #include "core/models/initial_condition.hpp"
+#include "core/operators/stability.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "test_support.hpp"
 
@@ -179,4 +181,46 @@ TEST(AtlasCpu, OperatorsAnAtlasCannotRunAreRefusedByName) {
     EXPECT_NE(refusal(implicit).find("semi_implicit integrator cannot run on an atlas domain"),
               std::string::npos)
         << refusal(implicit);
+}
+
+TEST(AtlasCpu, StabilityOnAnAtlasIsTheGershgorinBoundAndSaysSo) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    const Session s = test::atlasSession(atlas);
+    const ExplicitStability st = explicitStability(compileDiffusion(s), s.domain(), s.dt);
+    EXPECT_FALSE(st.exact);
+    EXPECT_NE(st.basis.find("Gershgorin bound on the atlas domain"), std::string::npos);
+    const float maxRate = std::max(s.params.at("Du"), s.params.at("Dv"));
+    ASSERT_TRUE(st.maxStableDt);
+    EXPECT_NEAR(*st.maxStableDt, 2.0 / (8.0 * maxRate), 1e-6);
+    // On the periodic grid of the same cells the exact analysis is used.
+    Session grid = s;
+    grid.atlas.reset();
+    EXPECT_TRUE(explicitStability(compileDiffusion(grid), grid.domain(), grid.dt).exact);
+}
+
+TEST(AtlasCpu, GridOnlyFeaturesAreRefusedByName) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    Session s = test::atlasSession(atlas);
+    const State state = test::randomUsedState(*atlas, 2);
+    try {
+        measurePattern(state, 0, s.domain());
+        FAIL() << "FFT statistics ran on an atlas";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("pattern statistics (FFT wavelength and "
+                                             "orientation) needs a grid's x and y axes and cannot "
+                                             "run on an atlas domain"),
+                  std::string::npos)
+            << e.what();
+    }
+    Session mapped = s;
+    mapped.paramMaps["F"] = ParamMapSpec{};
+    try {
+        CpuSimulator sim(mapped);
+        FAIL() << "a param map in x ran on an atlas";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("param_maps (fields in grid x and y) cannot vary a "
+                                             "parameter over an atlas domain"),
+                  std::string::npos)
+            << e.what();
+    }
 }

@@ -20,7 +20,7 @@ namespace {
 // is above the limit). `what` names the segment in messages.
 float checkExplicitStep(const Session& segment, const std::string& what, bool verbose) {
     const ExplicitStability st =
-        explicitStability(compileDiffusion(segment), segment.width, segment.height, segment.dt);
+        explicitStability(compileDiffusion(segment), segment.domain(), segment.dt);
     if (!st.maxStableDt) {
         std::ostringstream os;
         os << what
@@ -37,11 +37,12 @@ float checkExplicitStep(const Session& segment, const std::string& what, bool ve
                      "morphogen: warning: %sdt %g exceeds the explicit stability limit %.4g "
                      "(%s); capped to %.4g\n",
                      what.c_str(), segment.dt, *st.maxStableDt,
-                     st.exact ? "spectral radius of I + dt A from the kernel's Fourier symbol"
-                              : "Gershgorin bound of the diffusion map",
-                     capped);
+                     st.basis.c_str(), capped);
         return capped;
     }
+    if (!st.exact && verbose)
+        std::fprintf(stderr, "morphogen: %sexplicit step: dt %g within the %s (largest stable dt %.4g)\n",
+                     what.c_str(), segment.dt, st.basis.c_str(), *st.maxStableDt);
     if (st.exact && verbose)
         std::fprintf(stderr,
                      "morphogen: %sexplicit step: spectral radius of I + dt A = %.4f at dt %g "

@@ -1,5 +1,6 @@
 #include "core/domain/domain.hpp"
 
+#include "core/base/errors.hpp"
 #include "core/domain/atlas.hpp"
 
 namespace morphogen {
@@ -14,6 +15,12 @@ std::string toString(DomainKind kind) {
         return "atlas";
     }
     return "grid";
+}
+
+void requireGridAxes(const Domain& domain, const std::string& feature) {
+    if (domain.kind() == DomainKind::Atlas)
+        throw InputError(feature + " needs a grid's x and y axes and cannot run on an atlas "
+                                   "domain (accepted: grid, tiled grid)");
 }
 
 Domain Domain::tiledGrid(int width, int height, int columns, int rows) {

@@ -40,6 +40,14 @@ class Atlas;
 enum class DomainKind { Grid, TiledGrid, Atlas };
 std::string toString(DomainKind kind);
 
+class Domain;
+// For features defined on a grid's x and y axes or its Fourier modes (FFT
+// pattern statistics, the Fourier-symbol stability analysis, orientation
+// fields, param-map fields in x and y): throws InputError naming `feature`
+// and the domain when the domain is an atlas. A tiled grid is accepted: each
+// tile is a periodic grid (statistics are measured per tile).
+void requireGridAxes(const Domain& domain, const std::string& feature);
+
 class Domain {
 public:
     Domain() = default;
