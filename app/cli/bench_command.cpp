@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/backend.hpp"
+#include "cli/bench_domains.hpp"
 #include "cli/commands.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/base/errors.hpp"
@@ -33,6 +34,7 @@ struct BenchFlags {
     std::string operatorSizes = "512,1024";
     int convergenceSize = 1024;
     bool noConvergence = false;
+    bool noDomains = false;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -255,6 +257,8 @@ void bench(const BenchFlags& f) {
         }
     }
     report["operators"] = operatorRows;
+    if (!f.noDomains)
+        report["domains"] = benchDomains(context != nullptr, !f.noCpu, f.seconds);
 
     if (!f.noConvergence) {
         // Time to a converged pattern: flat explicit, semi-implicit at 5x
@@ -325,6 +329,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--convergence-size", flags->convergenceSize,
                     "grid size for time-to-converged-pattern (default 1024)");
     cmd->add_flag("--no-convergence", flags->noConvergence, "skip time-to-converged-pattern");
+    cmd->add_flag("--no-domains", flags->noDomains, "skip the atlas and batched-sweep rows");
     cmd->callback([flags] { bench(*flags); });
 }
 
