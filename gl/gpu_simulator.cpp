@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/domain/atlas.hpp"
+#include "core/domain/atlas_diagonals.hpp"
 
 namespace morphogen::gl {
 
@@ -146,6 +147,13 @@ GpuSimulator::GpuSimulator(const Session& session)
     if (const Atlas* atlas = m_k.domain.atlasMap()) {
         m_connectivity = Texture2D(atlas->width(), atlas->height(), GL_RGBA32UI);
         m_connectivity.uploadRgbaUint(atlas->connectivityMap());
+        if (op.form == DiffusionOperator::Form::Laplacian9) {
+            const auto diagonals = atlasDiagonals(*atlas);
+            for (int order = 0; order < 2; ++order) {
+                m_diagonals[order] = Texture2D(atlas->width(), atlas->height(), GL_RGBA32UI);
+                m_diagonals[order].uploadRgbaUint(packedDiagonals(*atlas, diagonals, order));
+            }
+        }
     }
     if (op.form == DiffusionOperator::Form::TensorMap) {
         m_map = Texture2D(session.width, session.height, GL_RGBA32F);
@@ -233,6 +241,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         glUniform2i(program.uniform("uTile"), m_k.domain.tileWidth(), m_k.domain.tileHeight());
     if (const Atlas* atlas = m_k.domain.atlasMap()) {
         glUniform1i(program.uniform("uConnectivity"), kConnectivityUnit);
+        glUniform1i(program.uniform("uDiagonals0"), kDiagonalUnits[0]);
+        glUniform1i(program.uniform("uDiagonals1"), kDiagonalUnits[1]);
         glUniform3i(program.uniform("uAtlas"), atlas->tileSize(), atlas->tilesPerRow(),
                     atlas->tileCount());
     }
@@ -272,6 +282,9 @@ void GpuSimulator::bindAuxiliaryTextures() const {
         m_frozen.bind(kFrozenUnit);
     if (m_connectivity.id())
         m_connectivity.bind(kConnectivityUnit);
+    for (int order = 0; order < 2; ++order)
+        if (m_diagonals[order].id())
+            m_diagonals[order].bind(kDiagonalUnits[order]);
 }
 
 void GpuSimulator::setState(const State& state) {

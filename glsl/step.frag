@@ -11,11 +11,13 @@
 // TILES (with any form but TENSOR_MAP) splits the grid into uTile-sized tiles,
 // each periodic on its own: neighbours wrap inside the cell's tile, so tiles
 // exchange nothing (a parameter sweep batched into one simulation).
-// ATLAS (5-point Laplacian only) is a surface atlas of square tiles (Lo et
+// ATLAS (5- or 9-point Laplacian only) is a surface atlas of square tiles (Lo et
 // al.): interior texels of a tile read their neighbours by textureOffset,
 // tile-border texels read them from the connectivity map (RGBA32UI, the +x,
 // +y, -x, -y neighbours packed x | y << 16) with texelFetch, and texels
-// outside every tile copy through unchanged.
+// outside every tile copy through unchanged. With STENCIL_9 a border texel's
+// diagonals come from uDiagonals0/1 (neighbour of neighbour, x then y and y
+// then x; see core/domain/atlas_diagonals.hpp) and are averaged.
 // The integrator is a second variant: (none) explicit Euler; RHS_PASS and
 // JACOBI_PASS the two passes of a semi-implicit step.
 // react() comes from the model's snippet, compiled in front of this file.
@@ -101,6 +103,10 @@ ivec2 tileNeighbour(int dx, int dy) {
 #ifdef ATLAS
 uniform usampler2D uConnectivity;
 uniform ivec3 uAtlas; // texels per tile side, tiles per row, tile count
+#ifdef STENCIL_9
+uniform usampler2D uDiagonals0; // (-x,-y), (+x,-y), (-x,+y), (+x,+y), reached x then y
+uniform usampler2D uDiagonals1; // the same, reached y then x
+#endif
 bool gAtlasBorder;    // this fragment's texel is on its tile's border ring
 ivec2 unpackTexel(uint address) {
     return ivec2(int(address & 0xFFFFu), int(address >> 16));
@@ -168,7 +174,20 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
     vec4 sides = AT(-1, 0) + AT(1, 0) + AT(0, -1) + AT(0, 1);
 #endif
 #ifdef STENCIL_9
+#ifdef ATLAS
+    vec4 corners;
+    if (gAtlasBorder) {
+        ivec2 cell = ivec2(gl_FragCoord.xy);
+        uvec4 a = texelFetch(uDiagonals0, cell, 0), b = texelFetch(uDiagonals1, cell, 0);
+#define DIAGONAL(i) 0.5 * (texelFetch(state, unpackTexel(a.i), 0) + texelFetch(state, unpackTexel(b.i), 0))
+        corners = DIAGONAL(x) + DIAGONAL(y) + DIAGONAL(z) + DIAGONAL(w);
+#undef DIAGONAL
+    } else {
+        corners = AT(-1, -1) + AT(1, -1) + AT(-1, 1) + AT(1, 1);
+    }
+#else
     vec4 corners = AT(-1, -1) + AT(1, -1) + AT(-1, 1) + AT(1, 1);
+#endif
     return uDiffusion[t] * ((4.0 * sides + corners - 20.0 * c) * (1.0 / 6.0));
 #else
     return uDiffusion[t] * (sides - 4.0 * c);

@@ -4,15 +4,15 @@
 
 namespace morphogen::test {
 
-Session atlasSession(std::shared_ptr<const Atlas> atlas) {
+Session atlasSession(std::shared_ptr<const Atlas> atlas, Stencil stencil) {
     Session s = loadPreset("gs_coral");
-    s.diffusion.stencil = Stencil::FivePoint;
+    s.diffusion.stencil = stencil;
     useAtlas(s, std::move(atlas));
     return s;
 }
 
-Session pureDiffusionSession(std::shared_ptr<const Atlas> atlas) {
-    Session s = atlasSession(std::move(atlas));
+Session pureDiffusionSession(std::shared_ptr<const Atlas> atlas, Stencil stencil) {
+    Session s = atlasSession(std::move(atlas), stencil);
     s.params["F"] = 0.0f;
     s.params["k"] = 0.0f;
     return s;

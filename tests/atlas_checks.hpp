@@ -10,12 +10,13 @@
 
 namespace morphogen::test {
 
-// gs_coral on an atlas: Gray-Scott at the preset's F and k, 5-point stencil.
-Session atlasSession(std::shared_ptr<const Atlas> atlas);
+// gs_coral on an atlas: Gray-Scott at the preset's F and k, isotropic diffusion.
+Session atlasSession(std::shared_ptr<const Atlas> atlas, Stencil stencil = Stencil::FivePoint);
 
 // Pure diffusion of u: Gray-Scott with F = k = 0 and v = 0 everywhere has no
 // reaction at all (du = -u v^2 + F (1 - u), dv = u v^2 - (F + k) v).
-Session pureDiffusionSession(std::shared_ptr<const Atlas> atlas);
+Session pureDiffusionSession(std::shared_ptr<const Atlas> atlas,
+                             Stencil stencil = Stencil::FivePoint);
 
 // u random in [0, 1] on used texels (v = 0), and a marker value on unused ones.
 State randomUsedState(const Atlas& atlas, unsigned seed);

@@ -23,8 +23,9 @@ template <class Sim> State runOn(const Session& s, const State& start, int steps
     return sim.state();
 }
 
-void expectBackendsAgree(std::shared_ptr<const Atlas> atlas) {
-    const Session s = test::atlasSession(atlas);
+void expectBackendsAgree(std::shared_ptr<const Atlas> atlas, Stencil stencil) {
+    SCOPED_TRACE(stencil == Stencil::FivePoint ? "5-point" : "9-point");
+    const Session s = test::atlasSession(atlas, stencil);
     const State start =
         makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, 11);
     const State cpu = runOn<CpuSimulator>(s, start, 60);
@@ -38,11 +39,13 @@ void expectBackendsAgree(std::shared_ptr<const Atlas> atlas) {
 } // namespace
 
 TEST(AtlasGpu, AgreesWithTheCpuOnTheCube) {
-    expectBackendsAgree(std::make_shared<const Atlas>(Atlas::cube(16)));
+    for (Stencil stencil : {Stencil::FivePoint, Stencil::NinePoint})
+        expectBackendsAgree(std::make_shared<const Atlas>(Atlas::cube(16)), stencil);
 }
 
 TEST(AtlasGpu, AgreesWithTheCpuOnRotatedTiles) {
-    expectBackendsAgree(std::make_shared<const Atlas>(Atlas::rotatedTiles(8)));
+    for (Stencil stencil : {Stencil::FivePoint, Stencil::NinePoint})
+        expectBackendsAgree(std::make_shared<const Atlas>(Atlas::rotatedTiles(8)), stencil);
 }
 
 TEST(AtlasGpu, ConservesMassOnTheCubeAndSpreadsSymmetricallyAtACorner) {

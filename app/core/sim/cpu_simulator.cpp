@@ -14,6 +14,7 @@
 #include <omp.h>
 
 #include "core/domain/atlas.hpp"
+#include "core/domain/atlas_diagonals.hpp"
 #include "core/sim/cpu_kernels.hpp"
 
 namespace morphogen {
@@ -175,6 +176,8 @@ CpuSimulator::CpuSimulator(const Session& session)
             m_borderRows.push_back(std::size_t(
                 std::lower_bound(border.begin(), border.end(), atlas->cellAt(0, y)) -
                 border.begin()));
+        if (m_k.op.form == DiffusionOperator::Form::Laplacian9)
+            m_diagonals = atlasDiagonals(*atlas);
     }
     m_explicitStep = fusedExplicitStep(m_model, m_k);
     m_rhsPass = fusedRhsPass(m_model, m_k);
@@ -212,7 +215,8 @@ void CpuSimulator::restoreFrozen() {
     }
 }
 
-void CpuSimulator::atlasLaplacianRow(const float* plane, int y, float* out) const {
+void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil,
+                                     float* out) const {
     const Atlas& atlas = *m_k.domain.atlasMap();
     const int w = atlas.width(), h = atlas.height();
     // Every texel on the texture's outer ring is a border or unused texel, so
@@ -221,7 +225,7 @@ void CpuSimulator::atlasLaplacianRow(const float* plane, int y, float* out) cons
     const float* row = plane + std::size_t(y) * w;
     const float* down =
         plane + std::size_t(GridDomain::wrapOrClamp(y + 1, h, EdgeMode::Clamped)) * w;
-    laplacianRow(up, row, down, out, w, EdgeMode::Clamped, Stencil::FivePoint);
+    laplacianRow(up, row, down, out, w, EdgeMode::Clamped, stencil);
     const std::vector<std::uint32_t>& border = atlas.borderCells();
     const auto& neighbours = atlas.neighbours();
     const std::size_t rowStart = std::size_t(y) * w;
@@ -230,7 +234,17 @@ void CpuSimulator::atlasLaplacianRow(const float* plane, int y, float* out) cons
         const std::array<std::uint32_t, 4>& n = neighbours[cell];
         // The interior loop's order: -x, +x, then the two vertical neighbours.
         const float sides = plane[n[2]] + plane[n[0]] + plane[n[3]] + plane[n[1]];
-        out[cell - rowStart] = sides - 4.0f * plane[cell];
+        if (stencil == Stencil::FivePoint) {
+            out[cell - rowStart] = sides - 4.0f * plane[cell];
+            continue;
+        }
+        // Each diagonal the mean of its two orders (equal away from irregular
+        // corners, where 0.5 (v + v) == v exactly); the grid's order of corners.
+        const std::array<std::uint32_t, 8>& d = m_diagonals[cell];
+        const float corners =
+            0.5f * (plane[d[0]] + plane[d[4]]) + 0.5f * (plane[d[1]] + plane[d[5]]) +
+            0.5f * (plane[d[2]] + plane[d[6]]) + 0.5f * (plane[d[3]] + plane[d[7]]);
+        out[cell - rowStart] = (4.0f * sides + corners - 20.0f * plane[cell]) * (1.0f / 6.0f);
     }
 }
 
@@ -282,8 +296,10 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
             return;
         }
         if (domain.kind() == DomainKind::Atlas) {
-            // fromSession allows only the 5-point Laplacian on an atlas.
-            atlasLaplacianRow(plane, y, out);
+            atlasLaplacianRow(plane, y,
+                              op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
+                                                                              : Stencil::NinePoint,
+                              out);
 #pragma omp simd
             for (int x = 0; x < w; ++x)
                 out[x] = d * out[x];

@@ -53,9 +53,12 @@ private:
     // m_borderRows[y + 1]) that go through the index array.
     std::vector<std::uint32_t> m_unusedCells;
     std::vector<std::size_t> m_borderRows;
-    // The 5-point Laplacian of one atlas row: interior texels by +-1 / +-width
-    // in one vectorised loop, then the row's border texels by the index array.
-    void atlasLaplacianRow(const float* plane, int y, float* out) const;
+    // 9-point on an atlas: per cell its diagonals in both orders (atlas_diagonals.hpp).
+    std::vector<std::array<std::uint32_t, 8>> m_diagonals;
+    // The 5- or 9-point Laplacian of one atlas row: interior texels by +-1 /
+    // +-width in one vectorised loop, then the row's border texels by the
+    // index array (and the diagonals).
+    void atlasLaplacianRow(const float* plane, int y, Stencil stencil, float* out) const;
 };
 
 } // namespace morphogen

@@ -98,12 +98,13 @@ std::string operatorName(DiffusionOperator::Form form) {
 void checkOperatorOnDomain(const StepConstants& k) {
     using Form = DiffusionOperator::Form;
     if (k.domain.kind() == DomainKind::Atlas) {
-        // Only the four neighbours of the connectivity map are defined
-        // everywhere; diagonals and distance-2 taps are not at irregular corners.
-        if (k.op.form != Form::Laplacian5)
+        // Only the four neighbours of the connectivity map and the 9-point
+        // stencil's averaged diagonals (atlas_diagonals.hpp) are defined
+        // everywhere; distance-2 taps and tensor cross terms are not.
+        if (k.op.form != Form::Laplacian5 && k.op.form != Form::Laplacian9)
             throw InputError("the " + operatorName(k.op.form) +
                              " diffusion operator cannot run on an atlas domain (accepted there: "
-                             "isotropic diffusion with the 5-point stencil)");
+                             "isotropic diffusion, 5-point or 9-point stencil)");
         if (k.integrator == Integrator::SemiImplicit)
             throw InputError("the semi_implicit integrator cannot run on an atlas domain (its "
                              "relaxation weight comes from a grid's Fourier symbol); use "
