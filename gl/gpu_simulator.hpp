@@ -14,7 +14,7 @@ constexpr int kRhsUnits[] = {2, 7, 8};
 constexpr int kMapUnit = 1;
 constexpr int kParamMapUnit = 3;
 constexpr int kFrozenUnit = 4;
-constexpr int kConnectivityUnit = 9; // atlas domains: the RGBA32UI connectivity map
+constexpr int kConnectivityUnit = 9;       // atlas domains: the RGBA32UI connectivity map
 constexpr int kDiagonalUnits[] = {10, 11}; // 9-point on an atlas: diagonals, both orders
 
 // Two sets of `count` same-size float textures, each set behind one
@@ -87,8 +87,8 @@ private:
     Program m_rhsProgram;
     std::vector<Texture2D> m_rhs;
     Framebuffer m_rhsFramebuffer;
-    Texture2D m_paramMap; // param_maps: up to 4 parameters per cell
-    Texture2D m_frozen;   // cascades: 1 where a cell is frozen
+    Texture2D m_paramMap;     // param_maps: up to 4 parameters per cell
+    Texture2D m_frozen;       // cascades: 1 where a cell is frozen
     Texture2D m_connectivity; // atlas domains: 4 neighbours per texel, x | y << 16
     Texture2D m_diagonals[2]; // 9-point on an atlas: the diagonals, x then y / y then x
     std::vector<std::uint8_t> m_frozenMask;

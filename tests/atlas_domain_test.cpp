@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "atlas_checks.hpp"
-#include "core/base/errors.hpp"
 #include "core/analysis/pattern_classifier.hpp"
+#include "core/base/errors.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/operators/stability.hpp"
 #include "core/sim/cpu_simulator.hpp"
@@ -82,8 +82,8 @@ void expectSmoothSpreadAtACubeCorner(Stencil stencil) {
     // Smooth: no hole and no spike at the corner. Each corner texel holds the
     // maximum and values fall monotonically along its tile's edges and diagonal.
     for (std::uint32_t c : corner) {
-        for (Direction d : {Direction::PlusX, Direction::PlusY, Direction::MinusX,
-                            Direction::MinusY})
+        for (Direction d :
+             {Direction::PlusX, Direction::PlusY, Direction::MinusX, Direction::MinusY})
             EXPECT_GE(u[c], u[atlas->step(c, d).cell]);
         std::uint32_t previous = c;
         for (int i = 0; i < 4; ++i) {
@@ -108,44 +108,44 @@ TEST(AtlasCpu, BlobAtAValence3CornerSpreadsSymmetricallyAndSmoothly) {
 
 TEST(AtlasCpu, PeriodicPlaneAtlasEqualsThePeriodicGrid) {
     for (Stencil stencil : {Stencil::FivePoint, Stencil::NinePoint}) {
-    auto atlas = std::make_shared<const Atlas>(Atlas::periodicPlane(8, 3, 2));
-    const Session onAtlas = test::atlasSession(atlas, stencil);
-    Session grid = onAtlas;
-    grid.atlas.reset();
-    ASSERT_EQ(grid.domain().kind(), DomainKind::Grid);
-    const State start = makeInitialState(grid.init, grid.reactionModel(), grid.params, grid.width,
-                                         grid.height, 5);
-    const State a = runOn(onAtlas, start, 100), g = runOn(grid, start, 100);
-    // The same sums in the same order (-x, +x, -y, +y; diagonals as the
-    // grid's, 0.5 (v + v) being v exactly), so bit for bit.
-    EXPECT_EQ(test::maxAbsDifference(a, g), 0.0f);
-    EXPECT_GT(test::maxAbsDifference(a, start), 1e-3f);
+        auto atlas = std::make_shared<const Atlas>(Atlas::periodicPlane(8, 3, 2));
+        const Session onAtlas = test::atlasSession(atlas, stencil);
+        Session grid = onAtlas;
+        grid.atlas.reset();
+        ASSERT_EQ(grid.domain().kind(), DomainKind::Grid);
+        const State start = makeInitialState(grid.init, grid.reactionModel(), grid.params,
+                                             grid.width, grid.height, 5);
+        const State a = runOn(onAtlas, start, 100), g = runOn(grid, start, 100);
+        // The same sums in the same order (-x, +x, -y, +y; diagonals as the
+        // grid's, 0.5 (v + v) being v exactly), so bit for bit.
+        EXPECT_EQ(test::maxAbsDifference(a, g), 0.0f);
+        EXPECT_GT(test::maxAbsDifference(a, start), 1e-3f);
     }
 }
 
 TEST(AtlasCpu, RotatedTilesEqualThePeriodicGridTheyStandFor) {
     for (Stencil stencil : {Stencil::FivePoint, Stencil::NinePoint}) {
-    const int n = 8;
-    auto atlas = std::make_shared<const Atlas>(Atlas::rotatedTiles(n));
-    const std::vector<std::uint32_t> planeCell = Atlas::rotatedTilesPlaneCells(n);
-    Session grid = test::atlasSession(atlas, stencil);
-    grid.atlas.reset();
-    grid.width = grid.height = 3 * n;
-    const State gridStart = makeInitialState(grid.init, grid.reactionModel(), grid.params,
-                                             grid.width, grid.height, 9);
-    State atlasStart(atlas->width(), atlas->height(), 2);
-    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
-        for (int c = 0; c < 2; ++c)
-            atlasStart.plane(c)[i] = gridStart.plane(c)[planeCell[i]];
-    const State a = runOn(test::atlasSession(atlas, stencil), atlasStart, 100);
-    const State g = runOn(grid, gridStart, 100);
-    // Turned tiles sum their four neighbours in another order: rounding only.
-    float worst = 0;
-    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
-        for (int c = 0; c < 2; ++c)
-            worst = std::max(worst, std::fabs(a.plane(c)[i] - g.plane(c)[planeCell[i]]));
-    EXPECT_LT(worst, 1e-5f * test::maxAbsValue(g));
-    EXPECT_GT(test::maxAbsDifference(g, gridStart), 1e-3f);
+        const int n = 8;
+        auto atlas = std::make_shared<const Atlas>(Atlas::rotatedTiles(n));
+        const std::vector<std::uint32_t> planeCell = Atlas::rotatedTilesPlaneCells(n);
+        Session grid = test::atlasSession(atlas, stencil);
+        grid.atlas.reset();
+        grid.width = grid.height = 3 * n;
+        const State gridStart = makeInitialState(grid.init, grid.reactionModel(), grid.params,
+                                                 grid.width, grid.height, 9);
+        State atlasStart(atlas->width(), atlas->height(), 2);
+        for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+            for (int c = 0; c < 2; ++c)
+                atlasStart.plane(c)[i] = gridStart.plane(c)[planeCell[i]];
+        const State a = runOn(test::atlasSession(atlas, stencil), atlasStart, 100);
+        const State g = runOn(grid, gridStart, 100);
+        // Turned tiles sum their four neighbours in another order: rounding only.
+        float worst = 0;
+        for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+            for (int c = 0; c < 2; ++c)
+                worst = std::max(worst, std::fabs(a.plane(c)[i] - g.plane(c)[planeCell[i]]));
+        EXPECT_LT(worst, 1e-5f * test::maxAbsValue(g));
+        EXPECT_GT(test::maxAbsDifference(g, gridStart), 1e-3f);
     }
 }
 

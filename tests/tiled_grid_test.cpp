@@ -47,8 +47,8 @@ void expectTilesMatchOneByOne(const Session& batched) {
 } // namespace
 
 TEST(TiledGrid, FusedFivePointBatchedEqualsTileByTile) {
-    expectTilesMatchOneByOne(batchedSession(
-        smallSweep("gs_coral", {"k", 0.05f, 0.065f}, {"F", 0.02f, 0.05f}, 60)));
+    expectTilesMatchOneByOne(
+        batchedSession(smallSweep("gs_coral", {"k", 0.05f, 0.065f}, {"F", 0.02f, 0.05f}, 60)));
 }
 
 TEST(TiledGrid, FusedNinePointBatchedEqualsTileByTile) {
@@ -64,8 +64,8 @@ TEST(TiledGrid, FusedFiveByFiveKernelBatchedEqualsTileByTile) {
 
 TEST(TiledGrid, SweptDiffusionRateBatchedEqualsTileByTile) {
     // A swept rate takes the generic path (per-cell rate) in the batched run.
-    expectTilesMatchOneByOne(batchedSession(
-        smallSweep("gs_coral", {"Du", 0.15f, 0.25f}, {"F", 0.02f, 0.05f}, 60)));
+    expectTilesMatchOneByOne(
+        batchedSession(smallSweep("gs_coral", {"Du", 0.15f, 0.25f}, {"F", 0.02f, 0.05f}, 60)));
 }
 
 TEST(TiledGrid, GenericPathBatchedEqualsTileByTile) {
@@ -74,9 +74,8 @@ TEST(TiledGrid, GenericPathBatchedEqualsTileByTile) {
     const ReactionModel& model = base.reactionModel();
     const std::string a = model.params()[0].name, b = model.params()[1].name;
     const float a0 = base.params.at(a), b0 = base.params.at(b);
-    expectTilesMatchOneByOne(batchedSession(
-        smallSweep("meinhardt_random_stripes", {a, a0 * 0.9f, a0 * 1.1f},
-                   {b, b0 * 0.9f, b0 * 1.1f}, 30)));
+    expectTilesMatchOneByOne(batchedSession(smallSweep(
+        "meinhardt_random_stripes", {a, a0 * 0.9f, a0 * 1.1f}, {b, b0 * 0.9f, b0 * 1.1f}, 30)));
 }
 
 TEST(TiledGrid, SemiImplicitBatchedEqualsTileByTile) {
@@ -87,8 +86,8 @@ TEST(TiledGrid, SemiImplicitBatchedEqualsTileByTile) {
 }
 
 TEST(TiledGrid, TilesRoundTripThroughJson) {
-    const Session batched = batchedSession(
-        smallSweep("gs_coral", {"k", 0.05f, 0.065f}, {"F", 0.02f, 0.05f}, 20));
+    const Session batched =
+        batchedSession(smallSweep("gs_coral", {"k", 0.05f, 0.065f}, {"F", 0.02f, 0.05f}, 20));
     const Session again = sessionFromJson(sessionToJson(batched), "round trip");
     ASSERT_EQ(again.tiles.params, batched.tiles.params);
     EXPECT_EQ(again.domain().kind(), DomainKind::TiledGrid);
@@ -96,8 +95,8 @@ TEST(TiledGrid, TilesRoundTripThroughJson) {
 }
 
 TEST(TiledGrid, BadTilesAreRefusedByName) {
-    nlohmann::json j = sessionToJson(batchedSession(
-        smallSweep("gs_coral", {"k", 0.05f, 0.065f}, {"F", 0.02f, 0.05f}, 20)));
+    nlohmann::json j = sessionToJson(
+        batchedSession(smallSweep("gs_coral", {"k", 0.05f, 0.065f}, {"F", 0.02f, 0.05f}, 20)));
     auto message = [](const nlohmann::json& bad) {
         try {
             sessionFromJson(bad, "t.json");

@@ -70,8 +70,8 @@ nlohmann::json atlasRows(const std::vector<std::pair<std::string, Make>>& backen
             const double a = sessionStepsPerSecond(onAtlas, make, gpu, seconds) * double(used);
             const double g =
                 sessionStepsPerSecond(grid, make, gpu, seconds) * double(grid.width * grid.height);
-            std::printf("%-22s %-8s %4dx%-4d %14.3g %14.3g %10.3f\n", name.c_str(),
-                        backend.c_str(), atlas->width(), atlas->height(), a, g, a / g);
+            std::printf("%-22s %-8s %4dx%-4d %14.3g %14.3g %10.3f\n", name.c_str(), backend.c_str(),
+                        atlas->width(), atlas->height(), a, g, a / g);
             std::fflush(stdout);
             rows.push_back({{"atlas", name},
                             {"backend", backend},
@@ -98,12 +98,11 @@ nlohmann::json sweepRows(const std::vector<std::pair<std::string, Make>>& backen
     spec.base.width = spec.base.height = spec.tile;
     const Session batched = batchedSession(spec);
     nlohmann::json rows = nlohmann::json::array();
-    std::printf("\n%-22s %-8s %14s %14s %10s\n", "sweep 4x4 of 64^2", "backend",
-                "batched it/s", "1-by-1 it/s", "ratio");
+    std::printf("\n%-22s %-8s %14s %14s %10s\n", "sweep 4x4 of 64^2", "backend", "batched it/s",
+                "1-by-1 it/s", "ratio");
     for (const auto& [backend, make] : backends) {
         const bool gpu = backend == "gpu";
-        std::fprintf(stderr, "bench: sweep batched vs one by one on the %s...\n",
-                     backend.c_str());
+        std::fprintf(stderr, "bench: sweep batched vs one by one on the %s...\n", backend.c_str());
         const double together = sessionStepsPerSecond(batched, make, gpu, seconds);
         std::vector<std::unique_ptr<Simulator>> tiles;
         for (int row = 0; row < spec.rows; ++row)

@@ -17,9 +17,8 @@ std::vector<std::array<std::uint32_t, 8>> atlasDiagonals(const Atlas& atlas) {
     return d;
 }
 
-std::vector<std::uint32_t> packedDiagonals(const Atlas& atlas,
-                                           const std::vector<std::array<std::uint32_t, 8>>& d,
-                                           int order) {
+std::vector<std::uint32_t>
+packedDiagonals(const Atlas& atlas, const std::vector<std::array<std::uint32_t, 8>>& d, int order) {
     const auto w = std::uint32_t(atlas.width());
     std::vector<std::uint32_t> map(d.size() * 4);
     for (std::size_t c = 0; c < d.size(); ++c)

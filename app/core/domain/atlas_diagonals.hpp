@@ -25,8 +25,7 @@ std::vector<std::array<std::uint32_t, 8>> atlasDiagonals(const Atlas& atlas);
 
 // For the GPU: 4 uint32 per texel (RGBA32UI), the diagonals of one order
 // (0: x then y, 1: y then x) packed x | y << 16.
-std::vector<std::uint32_t> packedDiagonals(const Atlas& atlas,
-                                           const std::vector<std::array<std::uint32_t, 8>>& d,
-                                           int order);
+std::vector<std::uint32_t>
+packedDiagonals(const Atlas& atlas, const std::vector<std::array<std::uint32_t, 8>>& d, int order);
 
 } // namespace morphogen

@@ -73,8 +73,8 @@ std::array<float, 3> colour(const FieldReader& reader, const std::string& key,
 TileGrid tilesFromJson(const json& j, const FieldReader& top, const Session& s,
                        const ReactionModel& model) {
     TileGrid tiles = tileGridFromJson(j, top.source(), model);
-    if (s.width % tiles.columns != 0 || s.height % tiles.rows != 0 ||
-        s.width / tiles.columns < 4 || s.height / tiles.rows < 4)
+    if (s.width % tiles.columns != 0 || s.height % tiles.rows != 0 || s.width / tiles.columns < 4 ||
+        s.height / tiles.rows < 4)
         top.failField("tiles", "grid [" + std::to_string(tiles.columns) + ", " +
                                    std::to_string(tiles.rows) + "] must split the " +
                                    std::to_string(s.width) + " x " + std::to_string(s.height) +
@@ -103,8 +103,8 @@ TileGrid tilesFromJson(const json& j, const FieldReader& top, const Session& s,
 Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
     top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
-                       "integrator", "relaxation_passes", "jacobi_sweeps", "schedule", "stages", "param_maps", "tiles", "dt",
-                       "steps", "seed", "init", "colormap"});
+                       "integrator", "relaxation_passes", "jacobi_sweeps", "schedule", "stages",
+                       "param_maps", "tiles", "dt", "steps", "seed", "init", "colormap"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");

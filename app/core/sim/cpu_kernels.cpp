@@ -26,10 +26,14 @@
 #endif
 
 // The loops below must be inlined into the clones to be built for AVX2 too.
+// Lambdas holding a whole row's work need it said as well: GCC otherwise
+// keeps them as one baseline (SSE2) function that the AVX2 clone calls.
 #if defined(__GNUC__)
 #define MORPHOGEN_INLINE inline __attribute__((always_inline))
+#define MORPHOGEN_INLINE_LAMBDA __attribute__((always_inline))
 #else
 #define MORPHOGEN_INLINE inline
+#define MORPHOGEN_INLINE_LAMBDA
 #endif
 
 namespace morphogen {
@@ -201,7 +205,7 @@ MORPHOGEN_VECTOR_CLONES void stepRows(const StepConstants& k, const State& in, S
             rowWindow<r>(in.plane(c), y, w, k.domain, rows[c]);
             next[c] = out.plane(c) + std::size_t(y) * w;
         }
-        forEachSegment<Tiled>(k, y, w, [&](int base, int width, const float* params) {
+        forEachSegment<Tiled>(k, y, w, [&](int base, int width, const float* params) MORPHOGEN_INLINE_LAMBDA {
             const Cell cell(params);
             forEachColumn<r>(base, width, edges, [&](int x, const auto& column) {
                 float conc[n], dcdt[n];
@@ -238,7 +242,7 @@ MORPHOGEN_VECTOR_CLONES void rhsRows(const StepConstants& k, const State& in, St
             row[c] = in.plane(c) + std::size_t(y) * w;
             rhs[c] = out.plane(c) + std::size_t(y) * w;
         }
-        forEachSegment<Tiled>(k, y, w, [&](int base, int width, const float* params) {
+        forEachSegment<Tiled>(k, y, w, [&](int base, int width, const float* params) MORPHOGEN_INLINE_LAMBDA {
             const Cell cell(params);
             // A lambda, so that conc and dcdt are not omp simd's per-lane arrays,
             // which GCC fails to vectorise.
@@ -288,7 +292,7 @@ MORPHOGEN_VECTOR_CLONES void relaxRows(const StepConstants& k, const State& x, c
                     update(i, 0.0f);
                 continue;
             }
-            forEachSegment<Tiled>(k, y, w, [&](int base, int width, const float*) {
+            forEachSegment<Tiled>(k, y, w, [&](int base, int width, const float*) MORPHOGEN_INLINE_LAMBDA {
                 forEachColumn<r>(base, width, edges, [&](int i, const auto& column) {
                     update(i, term([&](int dx, int dy) { return window[dy + r][column(dx)]; }));
                 });

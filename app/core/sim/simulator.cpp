@@ -5,8 +5,8 @@
 
 #include "core/base/errors.hpp"
 #include "core/numerics/kernel_symbol.hpp"
-#include "core/session/param_map.hpp"
 #include "core/operators/stability.hpp"
+#include "core/session/param_map.hpp"
 
 namespace morphogen {
 
@@ -65,8 +65,8 @@ void loadVaryingParams(StepConstants& k, const Session& session, Session& unitRa
                 values[name] = session.tiles.value(name, tx, rows - 1 - ty);
             const std::vector<float> packed = model.packParams(values);
             std::copy(packed.begin(), packed.end(),
-                      k.tileParams.begin() + std::ptrdiff_t((std::size_t(ty) * columns + tx) *
-                                                            k.params.size()));
+                      k.tileParams.begin() +
+                          std::ptrdiff_t((std::size_t(ty) * columns + tx) * k.params.size()));
         }
     for (const auto& [name, perTile] : session.tiles.params) {
         float* plane = addMappedParam(k, model, name, unitRates);
