@@ -48,6 +48,15 @@ TEST(AtlasGpu, AgreesWithTheCpuOnRotatedTiles) {
         expectBackendsAgree(std::make_shared<const Atlas>(Atlas::rotatedTiles(8)), stencil);
 }
 
+TEST(AtlasGpu, AgreesWithTheCpuAroundAValence5Corner) {
+    // Five tiles around one vertex, every quad's corner 0 at it; outer edges open.
+    std::vector<std::array<int, 4>> quads;
+    for (int i = 0; i < 5; ++i)
+        quads.push_back({0, 1 + i, 6 + i, 1 + (i + 1) % 5});
+    for (Stencil stencil : {Stencil::FivePoint, Stencil::NinePoint})
+        expectBackendsAgree(std::make_shared<const Atlas>(Atlas::fromQuads(8, quads)), stencil);
+}
+
 TEST(AtlasGpu, ConservesMassOnTheCubeAndSpreadsSymmetricallyAtACorner) {
     auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
     const std::vector<std::uint32_t> corner = test::cornerTexels(*atlas, 0);

@@ -240,3 +240,40 @@ TEST(AtlasCpu, GridOnlyFeaturesAreRefusedByName) {
             << e.what();
     }
 }
+
+namespace {
+
+// Five tiles around one vertex (valence 5), every quad's corner 0 at it:
+// vertices 0 (centre), 1..5 (spokes), 6..10 (outer). Outer edges are open.
+std::shared_ptr<const Atlas> fiveTileFan(int n) {
+    std::vector<std::array<int, 4>> quads;
+    for (int i = 0; i < 5; ++i)
+        quads.push_back({0, 1 + i, 6 + i, 1 + (i + 1) % 5});
+    return std::make_shared<const Atlas>(Atlas::fromQuads(n, quads));
+}
+
+} // namespace
+
+TEST(AtlasCpu, BlobAtAValence5CornerSpreadsSymmetricallyAndSmoothly) {
+    auto atlas = fiveTileFan(8);
+    ASSERT_EQ(atlas->cornerValence(0, 0), 5);
+    for (Stencil stencil : {Stencil::FivePoint, Stencil::NinePoint}) {
+        SCOPED_TRACE(stencil == Stencil::FivePoint ? "5-point" : "9-point");
+        State start(atlas->width(), atlas->height(), 2);
+        for (int t = 0; t < 5; ++t)
+            start.plane(0)[atlas->cornerCell(t, 0)] = 1.0f;
+        const State end = runOn(test::pureDiffusionSession(atlas, stencil), start, 40);
+        const float* u = end.plane(0);
+        EXPECT_NEAR(test::usedSum(end, *atlas, 0), 5.0, 5e-5);
+        // Five-fold symmetric: the same value at the same texel of every tile.
+        for (int t = 1; t < 5; ++t)
+            for (int v = 0; v < atlas->tileSize(); ++v)
+                for (int w = 0; w < atlas->tileSize(); ++w)
+                    ASSERT_NEAR(u[atlas->tileCell(t, w, v)], u[atlas->tileCell(0, w, v)], 1e-6f)
+                        << "tile " << t << " texel (" << w << ", " << v << ")";
+        // No spike or hole: the corner holds the maximum, values fall along the diagonal.
+        for (int i = 0; i + 1 < atlas->tileSize(); ++i)
+            EXPECT_GT(u[atlas->tileCell(0, i, i)], u[atlas->tileCell(0, i + 1, i + 1)]);
+        EXPECT_GE(u[atlas->tileCell(0, 0, 0)], u[atlas->tileCell(0, 1, 0)]);
+    }
+}
