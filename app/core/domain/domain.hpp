@@ -30,13 +30,18 @@ class Atlas;
 //
 // Operators on an atlas (decided here, enforced in StepConstants::fromSession):
 //   5-point Laplacian  defined everywhere (four neighbours are all the map has).
-//   9-point Laplacian  refused for now: its diagonals would be "neighbour of
-//                      neighbour in the same frame", which is undefined at an
-//                      irregular corner (valence 3 or 5: the two orders reach
-//                      different texels or the same one twice).
+//   9-point Laplacian  diagonals = neighbour of neighbour in the same frame,
+//                      the mean of both orders (x then y, y then x); the grid's
+//                      stencil away from irregular corners, and mass-conserving
+//                      at valence 3 and 5 (core/domain/atlas_diagonals.hpp).
 //   Witkin-Kass 3x3 tensors, McGraw's 5x5 kernels, tensor maps: refused with an
-//                      InputError naming the operator and the domain; they need
-//                      diagonal and distance-2 neighbours in a rotating frame.
+//                      InputError naming the operator and the domain: their
+//                      cross terms and distance-2 taps need a frame that
+//                      rotates across tile edges and is undefined at an
+//                      irregular corner (for the metric correction a 4-neighbour
+//                      form of the anisotropic term is the likely way).
+//   The semi-implicit integrator (its weight comes from a grid's Fourier
+//   symbol) and param maps (fields in grid x and y) are refused likewise.
 enum class DomainKind { Grid, TiledGrid, Atlas };
 std::string toString(DomainKind kind);
 
