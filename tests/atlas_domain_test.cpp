@@ -277,3 +277,30 @@ TEST(AtlasCpu, BlobAtAValence5CornerSpreadsSymmetricallyAndSmoothly) {
         EXPECT_GE(u[atlas->tileCell(0, 0, 0)], u[atlas->tileCell(0, 1, 0)]);
     }
 }
+
+TEST(AtlasCpu, GenericPathOnRotatedTilesEqualsThePeriodicGrid) {
+    // Six chemicals take the generic row-pass path (the fused kernels stop at
+    // four), which walks atlas rows with atlasLaplacianRow.
+    const int n = 8;
+    auto atlas = std::make_shared<const Atlas>(Atlas::rotatedTiles(n));
+    const std::vector<std::uint32_t> planeCell = Atlas::rotatedTilesPlaneCells(n);
+    Session onAtlas = loadPreset("meinhardt_random_stripes");
+    useAtlas(onAtlas, atlas);
+    Session grid = onAtlas;
+    grid.atlas.reset();
+    grid.width = grid.height = 3 * n;
+    const State gridStart = makeInitialState(grid.init, grid.reactionModel(), grid.params,
+                                             grid.width, grid.height, 9);
+    const int chemicals = gridStart.channels();
+    State atlasStart(atlas->width(), atlas->height(), chemicals);
+    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+        for (int c = 0; c < chemicals; ++c)
+            atlasStart.plane(c)[i] = gridStart.plane(c)[planeCell[i]];
+    const State a = runOn(onAtlas, atlasStart, 60), g = runOn(grid, gridStart, 60);
+    float worst = 0;
+    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+        for (int c = 0; c < chemicals; ++c)
+            worst = std::max(worst, std::fabs(a.plane(c)[i] - g.plane(c)[planeCell[i]]));
+    EXPECT_LT(worst, 1e-5f * test::maxAbsValue(g));
+    EXPECT_GT(test::maxAbsDifference(g, gridStart), 1e-4f);
+}

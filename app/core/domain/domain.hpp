@@ -84,18 +84,18 @@ public:
     const std::shared_ptr<const Atlas>& sharedAtlas() const { return m_atlas; }
 
     // The row dy rows from y (|dy| < tile height), wrapped or clamped by the
-    // grid's edges or wrapped inside y's tile. Not for atlases.
+    // grid's edges or wrapped inside y's tile. An atlas answers as a clamped
+    // grid: right for interior texels, and its border texels are redone
+    // through the connectivity map.
     int neighbourRow(int y, int dy) const {
-        assert(m_kind != DomainKind::Atlas);
-        if (m_kind == DomainKind::Grid)
+        if (m_kind != DomainKind::TiledGrid)
             return GridDomain::wrapOrClamp(y + dy, height(), edges());
         const int th = tileHeight(), top = y - y % th;
         return top + GridDomain::wrapOrClamp(y - top + dy, th, EdgeMode::Periodic);
     }
     // Likewise for columns.
     int neighbourColumn(int x, int dx) const {
-        assert(m_kind != DomainKind::Atlas);
-        if (m_kind == DomainKind::Grid)
+        if (m_kind != DomainKind::TiledGrid)
             return GridDomain::wrapOrClamp(x + dx, width(), edges());
         const int tw = tileWidth(), left = x - x % tw;
         return left + GridDomain::wrapOrClamp(x - left + dx, tw, EdgeMode::Periodic);

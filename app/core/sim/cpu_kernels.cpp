@@ -362,7 +362,10 @@ bool fusedParamsOk(const StepConstants& k) {
 } // namespace
 
 StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants& k) {
-    if (!fusedParamsOk(k) || k.domain.kind() == DomainKind::Atlas)
+    // On an atlas the kernel steps the texture as a clamped grid, right for
+    // every interior texel; the caller redoes the border texels (see
+    // CpuSimulator::redoAtlasBorder).
+    if (!fusedParamsOk(k))
         return nullptr;
     return withCell(model, [&](auto tag) -> StepRowsKernel {
         using Cell = typename decltype(tag)::Type;

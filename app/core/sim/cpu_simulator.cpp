@@ -227,24 +227,51 @@ void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil,
         plane + std::size_t(GridDomain::wrapOrClamp(y + 1, h, EdgeMode::Clamped)) * w;
     laplacianRow(up, row, down, out, w, EdgeMode::Clamped, stencil);
     const std::vector<std::uint32_t>& border = atlas.borderCells();
-    const auto& neighbours = atlas.neighbours();
     const std::size_t rowStart = std::size_t(y) * w;
-    for (std::size_t b = m_borderRows[std::size_t(y)]; b < m_borderRows[std::size_t(y) + 1]; ++b) {
-        const std::uint32_t cell = border[b];
-        const std::array<std::uint32_t, 4>& n = neighbours[cell];
-        // The interior loop's order: -x, +x, then the two vertical neighbours.
-        const float sides = plane[n[2]] + plane[n[0]] + plane[n[3]] + plane[n[1]];
-        if (stencil == Stencil::FivePoint) {
-            out[cell - rowStart] = sides - 4.0f * plane[cell];
-            continue;
+    for (std::size_t b = m_borderRows[std::size_t(y)]; b < m_borderRows[std::size_t(y) + 1]; ++b)
+        out[border[b] - rowStart] = atlasLaplacian(plane, border[b], stencil);
+}
+
+float CpuSimulator::atlasLaplacian(const float* plane, std::uint32_t cell, Stencil stencil) const {
+    const std::array<std::uint32_t, 4>& n = m_k.domain.atlasMap()->neighbours()[cell];
+    // The interior loop's order: -x, +x, then the two vertical neighbours.
+    const float sides = plane[n[2]] + plane[n[0]] + plane[n[3]] + plane[n[1]];
+    if (stencil == Stencil::FivePoint)
+        return sides - 4.0f * plane[cell];
+    // Each diagonal the mean of its two orders (equal away from irregular
+    // corners, where 0.5 (v + v) == v exactly); the grid's order of corners.
+    const std::array<std::uint32_t, 8>& d = m_diagonals[cell];
+    const float corners =
+        0.5f * (plane[d[0]] + plane[d[4]]) + 0.5f * (plane[d[1]] + plane[d[5]]) +
+        0.5f * (plane[d[2]] + plane[d[6]]) + 0.5f * (plane[d[3]] + plane[d[7]]);
+    return (4.0f * sides + corners - 20.0f * plane[cell]) * (1.0f / 6.0f);
+}
+
+void CpuSimulator::redoAtlasBorder() {
+    const Stencil stencil = m_k.op.form == DiffusionOperator::Form::Laplacian5
+                                ? Stencil::FivePoint
+                                : Stencil::NinePoint;
+    const int nc = m_k.chemicals;
+    const float dt = m_k.dt;
+    float conc[kMaxChemicals], dcdt[kMaxChemicals];
+    RowView view;
+    view.n = 1;
+    for (int c = 0; c < nc; ++c) {
+        view.c[c] = &conc[c];
+        view.dcdt[c] = &dcdt[c];
+    }
+    // As the generic path: the term, the reaction, then the update and clamp.
+    for (std::uint32_t cell : m_k.domain.atlasMap()->borderCells()) {
+        for (int c = 0; c < nc; ++c)
+            conc[c] = m_current.plane(c)[cell];
+        m_model.react(view, m_k.params.data());
+        for (int c = 0; c < nc; ++c) {
+            const float d = m_k.op.rates[std::size_t(c)];
+            const float term =
+                d == 0.0f ? 0.0f : d * atlasLaplacian(m_current.plane(c), cell, stencil);
+            m_next.plane(c)[cell] = std::min(
+                std::max(conc[c] + dt * (dcdt[c] + term), m_k.clampMin[c]), m_k.clampMax[c]);
         }
-        // Each diagonal the mean of its two orders (equal away from irregular
-        // corners, where 0.5 (v + v) == v exactly); the grid's order of corners.
-        const std::array<std::uint32_t, 8>& d = m_diagonals[cell];
-        const float corners =
-            0.5f * (plane[d[0]] + plane[d[4]]) + 0.5f * (plane[d[1]] + plane[d[5]]) +
-            0.5f * (plane[d[2]] + plane[d[6]]) + 0.5f * (plane[d[3]] + plane[d[7]]);
-        out[cell - rowStart] = (4.0f * sides + corners - 20.0f * plane[cell]) * (1.0f / 6.0f);
     }
 }
 
@@ -279,6 +306,8 @@ void CpuSimulator::step() {
         return;
     }
     forEachBand(m_current, [&](int y0, int y1) { m_explicitStep(m_k, m_current, m_next, y0, y1); });
+    if (m_k.domain.kind() == DomainKind::Atlas)
+        redoAtlasBorder();
     restoreFrozen();
     std::swap(m_current, m_next);
 }

@@ -59,6 +59,11 @@ private:
     // +-width in one vectorised loop, then the row's border texels by the
     // index array (and the diagonals).
     void atlasLaplacianRow(const float* plane, int y, Stencil stencil, float* out) const;
+    // The Laplacian (rate 1) at one atlas texel through the index array.
+    float atlasLaplacian(const float* plane, std::uint32_t cell, Stencil stencil) const;
+    // After a fused step over an atlas texture (a clamped grid to the kernel):
+    // the explicit step of every tile-border texel again, through the map.
+    void redoAtlasBorder();
 };
 
 } // namespace morphogen
