@@ -179,7 +179,8 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
     if (gAtlasBorder) {
         ivec2 cell = ivec2(gl_FragCoord.xy);
         uvec4 a = texelFetch(uDiagonals0, cell, 0), b = texelFetch(uDiagonals1, cell, 0);
-#define DIAGONAL(i) 0.5 * (texelFetch(state, unpackTexel(a.i), 0) + texelFetch(state, unpackTexel(b.i), 0))
+#define DIAGONAL(i)                                                                                \
+    0.5 * (texelFetch(state, unpackTexel(a.i), 0) + texelFetch(state, unpackTexel(b.i), 0))
         corners = DIAGONAL(x) + DIAGONAL(y) + DIAGONAL(z) + DIAGONAL(w);
 #undef DIAGONAL
     } else {

@@ -41,7 +41,8 @@ float checkExplicitStep(const Session& segment, const std::string& what, bool ve
         return capped;
     }
     if (!st.exact && verbose)
-        std::fprintf(stderr, "morphogen: %sexplicit step: dt %g within the %s (largest stable dt %.4g)\n",
+        std::fprintf(stderr,
+                     "morphogen: %sexplicit step: dt %g within the %s (largest stable dt %.4g)\n",
                      what.c_str(), segment.dt, st.basis.c_str(), *st.maxStableDt);
     if (st.exact && verbose)
         std::fprintf(stderr,

@@ -166,8 +166,7 @@ MORPHOGEN_INLINE void forEachColumn(int base, int w, EdgeMode edges, const Cell&
 // whole row with the session's parameters on a grid, one per tile with that
 // tile's parameters on a tiled grid.
 template <bool Tiled, class Segment>
-MORPHOGEN_INLINE void forEachSegment(const StepConstants& k, int y, int w,
-                                     const Segment& segment) {
+MORPHOGEN_INLINE void forEachSegment(const StepConstants& k, int y, int w, const Segment& segment) {
     if constexpr (!Tiled) {
         segment(0, w, k.params.data());
     } else {
@@ -205,7 +204,7 @@ MORPHOGEN_VECTOR_CLONES void stepRows(const StepConstants& k, const State& in, S
             rowWindow<r>(in.plane(c), y, w, k.domain, rows[c]);
             next[c] = out.plane(c) + std::size_t(y) * w;
         }
-        forEachSegment<Tiled>(k, y, w, [&](int base, int width, const float* params) MORPHOGEN_INLINE_LAMBDA {
+        const auto segment = [&](int base, int width, const float* params) MORPHOGEN_INLINE_LAMBDA {
             const Cell cell(params);
             forEachColumn<r>(base, width, edges, [&](int x, const auto& column) {
                 float conc[n], dcdt[n];
@@ -224,7 +223,8 @@ MORPHOGEN_VECTOR_CLONES void stepRows(const StepConstants& k, const State& in, S
                         std::min(std::max(conc[c] + dt * (dcdt[c] + diffusion), lo[c]), hi[c]);
                 }
             });
-        });
+        };
+        forEachSegment<Tiled>(k, y, w, segment);
     }
 }
 
@@ -242,7 +242,7 @@ MORPHOGEN_VECTOR_CLONES void rhsRows(const StepConstants& k, const State& in, St
             row[c] = in.plane(c) + std::size_t(y) * w;
             rhs[c] = out.plane(c) + std::size_t(y) * w;
         }
-        forEachSegment<Tiled>(k, y, w, [&](int base, int width, const float* params) MORPHOGEN_INLINE_LAMBDA {
+        const auto segment = [&](int base, int width, const float* params) MORPHOGEN_INLINE_LAMBDA {
             const Cell cell(params);
             // A lambda, so that conc and dcdt are not omp simd's per-lane arrays,
             // which GCC fails to vectorise.
@@ -257,7 +257,8 @@ MORPHOGEN_VECTOR_CLONES void rhsRows(const StepConstants& k, const State& in, St
 #pragma omp simd
             for (int x = base; x < base + width; ++x)
                 rhsCell(x);
-        });
+        };
+        forEachSegment<Tiled>(k, y, w, segment);
     }
 }
 
@@ -292,11 +293,12 @@ MORPHOGEN_VECTOR_CLONES void relaxRows(const StepConstants& k, const State& x, c
                     update(i, 0.0f);
                 continue;
             }
-            forEachSegment<Tiled>(k, y, w, [&](int base, int width, const float*) MORPHOGEN_INLINE_LAMBDA {
+            const auto segment = [&](int base, int width, const float*) MORPHOGEN_INLINE_LAMBDA {
                 forEachColumn<r>(base, width, edges, [&](int i, const auto& column) {
                     update(i, term([&](int dx, int dy) { return window[dy + r][column(dx)]; }));
                 });
-            });
+            };
+            forEachSegment<Tiled>(k, y, w, segment);
         }
     }
 }
