@@ -446,6 +446,15 @@ void validateSession(const Session& s, const std::string& source) {
         throw InputError(source + ": dt must be a positive number");
     if (s.steps < 0)
         throw InputError(source + ": steps must be >= 0");
+    // A size override must keep a batched sweep's tiles whole.
+    if (s.tiles.active() &&
+        (s.width % s.tiles.columns != 0 || s.height % s.tiles.rows != 0 ||
+         s.width / s.tiles.columns < 4 || s.height / s.tiles.rows < 4 ||
+         s.edges != EdgeMode::Periodic))
+        throw InputError(source + ": tiles grid [" + std::to_string(s.tiles.columns) + ", " +
+                         std::to_string(s.tiles.rows) + "] must split the " +
+                         std::to_string(s.width) + " x " + std::to_string(s.height) +
+                         " grid evenly into periodic tiles of at least 4 x 4 cells");
 }
 
 } // namespace morphogen
