@@ -6,6 +6,9 @@
 #include <iterator>
 #include <string>
 
+#include "core/domain/atlas.hpp"
+#include "core/domain/atlas_diagonals.hpp"
+
 namespace morphogen::gl {
 
 namespace {
@@ -23,6 +26,13 @@ void setChemicalVec4s(GLint location, const std::array<T, N>& v, int textures) {
     for (std::size_t i = 0; i < packed.size(); ++i)
         packed[i] = finite(float(v[i]));
     glUniform4fv(location, textures, packed.data());
+}
+
+// The sampler's wrap mode is the grid's edge rule: textureOffset then reads
+// neighbours with no index arithmetic (the fast path). Tiled grids fetch
+// inside the tile and do not depend on it.
+GLenum wrapMode(const Domain& domain) {
+    return domain.edges() == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE;
 }
 
 } // namespace
@@ -116,7 +126,7 @@ GpuSimulator::GpuSimulator(const Session& session)
     : m_session(session), m_model(&session.reactionModel()),
       m_k(StepConstants::fromSession(session)),
       m_pingPong(session.width, session.height, stateFormat(m_k.chemicals),
-                 session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE,
+                 wrapMode(session.domain()),
                  stateTextures(m_k.chemicals)) {
     const DiffusionOperator& op = m_k.op;
     buildPrograms();
@@ -131,12 +141,23 @@ GpuSimulator::GpuSimulator(const Session& session)
     }
     if (m_k.hasParamMaps()) {
         m_paramMap = Texture2D(session.width, session.height, GL_RGBA32F);
-        m_paramMap.setWrap(session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+        m_paramMap.setWrap(wrapMode(session.domain()));
         m_paramMap.uploadRgba(m_k.paramMaps.toRgba());
+    }
+    if (const Atlas* atlas = m_k.domain.atlasMap()) {
+        m_connectivity = Texture2D(atlas->width(), atlas->height(), GL_RGBA32UI);
+        m_connectivity.uploadRgbaUint(atlas->connectivityMap());
+        if (op.form == DiffusionOperator::Form::Laplacian9) {
+            const auto diagonals = atlasDiagonals(*atlas);
+            for (int order = 0; order < 2; ++order) {
+                m_diagonals[order] = Texture2D(atlas->width(), atlas->height(), GL_RGBA32UI);
+                m_diagonals[order].uploadRgbaUint(packedDiagonals(*atlas, diagonals, order));
+            }
+        }
     }
     if (op.form == DiffusionOperator::Form::TensorMap) {
         m_map = Texture2D(session.width, session.height, GL_RGBA32F);
-        m_map.setWrap(session.edges == EdgeMode::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+        m_map.setWrap(wrapMode(session.domain()));
         m_map.uploadRgba(op.map.toRgba());
     }
 }
@@ -192,6 +213,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
     }
     if (m_k.tiled())
         defines.push_back("TILES");
+    if (m_k.domain.kind() == DomainKind::Atlas)
+        defines.push_back("ATLAS");
     if (pass)
         defines.push_back(pass);
     if (!m_frozenMask.empty())
@@ -209,7 +232,14 @@ Program GpuSimulator::buildProgram(const char* pass) const {
     glUniform1i(program.uniform("uParamMap"), kParamMapUnit);
     glUniform1i(program.uniform("uFrozen"), kFrozenUnit);
     if (m_k.tiled())
-        glUniform2i(program.uniform("uTile"), m_k.tile[0], m_k.tile[1]);
+        glUniform2i(program.uniform("uTile"), m_k.domain.tileWidth(), m_k.domain.tileHeight());
+    if (const Atlas* atlas = m_k.domain.atlasMap()) {
+        glUniform1i(program.uniform("uConnectivity"), kConnectivityUnit);
+        glUniform1i(program.uniform("uDiagonals0"), kDiagonalUnits[0]);
+        glUniform1i(program.uniform("uDiagonals1"), kDiagonalUnits[1]);
+        glUniform3i(program.uniform("uAtlas"), atlas->tileSize(), atlas->tilesPerRow(),
+                    atlas->tileCount());
+    }
     if (op.form == Form::TensorMap)
         glUniform1i(program.uniform("uMap"), kMapUnit);
     setLiveUniforms(program);
@@ -226,6 +256,11 @@ void GpuSimulator::bindAuxiliaryTextures() const {
         m_paramMap.bind(kParamMapUnit);
     if (m_frozen.id())
         m_frozen.bind(kFrozenUnit);
+    if (m_connectivity.id())
+        m_connectivity.bind(kConnectivityUnit);
+    for (int order = 0; order < 2; ++order)
+        if (m_diagonals[order].id())
+            m_diagonals[order].bind(kDiagonalUnits[order]);
 }
 
 void GpuSimulator::setState(const State& state) {

@@ -14,7 +14,9 @@ constexpr int kRhsUnits[] = {2, 7, 8};
 constexpr int kMapUnit = 1;
 constexpr int kParamMapUnit = 3;
 constexpr int kFrozenUnit = 4;
-constexpr int kBrushMaskUnit = 9;
+constexpr int kConnectivityUnit = 9;       // atlas domains: the RGBA32UI connectivity map
+constexpr int kDiagonalUnits[] = {10, 11}; // 9-point on an atlas: diagonals, both orders
+constexpr int kBrushMaskUnit = 12;         // brush passes: the region's weights and noise
 
 // Two sets of `count` same-size float textures, each set behind one
 // framebuffer (multiple render targets); each pass samples the current set
@@ -56,7 +58,7 @@ int stateTextures(int chemicals);
 // step program is assembled from glsl/fullscreen.vert, the model's reaction
 // snippet (glsl/models/NAME.glsl) and glsl/step.frag, with the diffusion
 // operator's form as a #define variant; parameters are uniforms and edges are the sampler's wrap
-// mode (or, for a Tiles param map, each tile wraps on its own: the TILES variant). run() issues
+// mode (on a tiled grid each tile wraps on its own: the TILES variant). run() issues
 // draws only: nothing is read back until state(). Brush writes draw over the region's rectangles
 // (gpu_brush.cpp). Needs a current context for its whole life.
 class GpuSimulator : public Simulator {
@@ -101,8 +103,10 @@ private:
     Program m_rhsProgram;
     std::vector<Texture2D> m_rhs;
     Framebuffer m_rhsFramebuffer;
-    Texture2D m_paramMap; // param_maps: up to 4 parameters per cell
-    Texture2D m_frozen;   // cascades: 1 where a cell is frozen
+    Texture2D m_paramMap;     // param_maps: up to 4 parameters per cell
+    Texture2D m_frozen;       // cascades: 1 where a cell is frozen
+    Texture2D m_connectivity; // atlas domains: 4 neighbours per texel, x | y << 16
+    Texture2D m_diagonals[2]; // 9-point on an atlas: the diagonals, x then y / y then x
     std::vector<std::uint8_t> m_frozenMask;
     Program m_brushProgram; // built on the first chemical brush
 

@@ -30,7 +30,10 @@ Texture2D::Texture2D(int width, int height, GLenum internalFormat)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    glTexImage2D(GL_TEXTURE_2D, 0, GLint(internalFormat), width, height, 0, GL_RGBA, GL_FLOAT,
+    // Integer formats need an integer transfer format even with no data.
+    const bool integer = internalFormat == GL_RGBA32UI;
+    glTexImage2D(GL_TEXTURE_2D, 0, GLint(internalFormat), width, height, 0,
+                 integer ? GL_RGBA_INTEGER : GL_RGBA, integer ? GL_UNSIGNED_INT : GL_FLOAT,
                  nullptr);
     const GLenum error = glGetError();
     if (error == GL_OUT_OF_MEMORY)
@@ -64,6 +67,14 @@ void Texture2D::uploadRgbaRect(int x, int y, int width, int height,
     glBindTexture(GL_TEXTURE_2D, id());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexSubImage2D(GL_TEXTURE_2D, 0, x, y, width, height, GL_RGBA, GL_FLOAT, rgba.data());
+}
+
+void Texture2D::uploadRgbaUint(const std::vector<std::uint32_t>& rgba) {
+    assert(m_internalFormat == GL_RGBA32UI && rgba.size() == std::size_t(m_width) * m_height * 4);
+    glBindTexture(GL_TEXTURE_2D, id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_width, m_height, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                    rgba.data());
 }
 
 std::vector<float> Texture2D::downloadRgba() const {

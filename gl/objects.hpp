@@ -3,6 +3,7 @@
 // source owning name 0, whose destructor does nothing. Destructors never
 // throw and need the owning context current.
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -70,6 +71,8 @@ public:
     void uploadRgba(const std::vector<float>& rgba);
     // RGBA floats (width * height * 4) into the rectangle at (x, y).
     void uploadRgbaRect(int x, int y, int width, int height, const std::vector<float>& rgba);
+    // Whole-texture upload of an integer (GL_RGBA32UI) texture.
+    void uploadRgbaUint(const std::vector<std::uint32_t>& rgba);
     std::vector<float> downloadRgba() const;
 
 private:

@@ -11,6 +11,13 @@
 // TILES (with any form but TENSOR_MAP) splits the grid into uTile-sized tiles,
 // each periodic on its own: neighbours wrap inside the cell's tile, so tiles
 // exchange nothing (a parameter sweep batched into one simulation).
+// ATLAS (5- or 9-point Laplacian only) is a surface atlas of square tiles (Lo et
+// al.): interior texels of a tile read their neighbours by textureOffset,
+// tile-border texels read them from the connectivity map (RGBA32UI, the +x,
+// +y, -x, -y neighbours packed x | y << 16) with texelFetch, and texels
+// outside every tile copy through unchanged. With STENCIL_9 a border texel's
+// diagonals come from uDiagonals0/1 (neighbour of neighbour, x then y and y
+// then x; see core/domain/atlas_diagonals.hpp) and are averaged.
 // The integrator is a second variant: (none) explicit Euler; RHS_PASS and
 // JACOBI_PASS the two passes of a semi-implicit step.
 // react() comes from the model's snippet, compiled in front of this file.
@@ -93,6 +100,27 @@ ivec2 tileNeighbour(int dx, int dy) {
 #else
 #define AT(dx, dy) textureOffset(state, uv, ivec2(dx, dy))
 #endif
+#ifdef ATLAS
+uniform usampler2D uConnectivity;
+uniform ivec3 uAtlas; // texels per tile side, tiles per row, tile count
+#ifdef STENCIL_9
+uniform usampler2D uDiagonals0; // (-x,-y), (+x,-y), (-x,+y), (+x,+y), reached x then y
+uniform usampler2D uDiagonals1; // the same, reached y then x
+#endif
+bool gAtlasBorder;    // this fragment's texel is on its tile's border ring
+ivec2 unpackTexel(uint address) {
+    return ivec2(int(address & 0xFFFFu), int(address >> 16));
+}
+// 0: outside every tile, 1: inside a tile, 2: on a tile's border ring.
+int atlasTexel() {
+    ivec2 cell = ivec2(gl_FragCoord.xy);
+    ivec2 tile = cell / uAtlas.x;
+    if (tile.y * uAtlas.y + tile.x >= uAtlas.z)
+        return 0;
+    ivec2 local = cell - tile * uAtlas.x;
+    return all(greaterThan(local, ivec2(0))) && all(lessThan(local, ivec2(uAtlas.x - 1))) ? 1 : 2;
+}
+#endif
 #define TAP(dx, dy) sum += uKernel[t * 25 + (dy + 2) * 5 + dx + 2] * AT(dx, dy)
 
 #ifdef TENSOR_MAP
@@ -132,9 +160,35 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
               0.25 * (axy(t, mu) * (ru - lu) - axy(t, md) * (rd - ld));
     return xx + yy + xy;
 #else
+#ifdef ATLAS
+    // The CPU's order: -x, +x, -y, +y.
+    vec4 sides;
+    if (gAtlasBorder) {
+        uvec4 n = texelFetch(uConnectivity, ivec2(gl_FragCoord.xy), 0);
+        sides = texelFetch(state, unpackTexel(n.z), 0) + texelFetch(state, unpackTexel(n.x), 0) +
+                texelFetch(state, unpackTexel(n.w), 0) + texelFetch(state, unpackTexel(n.y), 0);
+    } else {
+        sides = AT(-1, 0) + AT(1, 0) + AT(0, -1) + AT(0, 1);
+    }
+#else
     vec4 sides = AT(-1, 0) + AT(1, 0) + AT(0, -1) + AT(0, 1);
+#endif
 #ifdef STENCIL_9
+#ifdef ATLAS
+    vec4 corners;
+    if (gAtlasBorder) {
+        ivec2 cell = ivec2(gl_FragCoord.xy);
+        uvec4 a = texelFetch(uDiagonals0, cell, 0), b = texelFetch(uDiagonals1, cell, 0);
+#define DIAGONAL(i)                                                                                \
+    0.5 * (texelFetch(state, unpackTexel(a.i), 0) + texelFetch(state, unpackTexel(b.i), 0))
+        corners = DIAGONAL(x) + DIAGONAL(y) + DIAGONAL(z) + DIAGONAL(w);
+#undef DIAGONAL
+    } else {
+        corners = AT(-1, -1) + AT(1, -1) + AT(-1, 1) + AT(1, 1);
+    }
+#else
     vec4 corners = AT(-1, -1) + AT(1, -1) + AT(-1, 1) + AT(1, 1);
+#endif
     return uDiffusion[t] * ((4.0 * sides + corners - 20.0 * c) * (1.0 / 6.0));
 #else
     return uDiffusion[t] * (sides - 4.0 * c);
@@ -154,6 +208,22 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
     }
 #else
 #define KEEP_FROZEN(uv)
+#endif
+
+// Atlas texels outside every tile copy through; the rest note whether they are
+// on a tile border.
+#ifdef ATLAS
+#define ATLAS_TEXEL(uv)                                                                            \
+    {                                                                                              \
+        int kind = atlasTexel();                                                                   \
+        if (kind == 0) {                                                                           \
+            FOR_EACH_STATE(COPY_STATE)                                                             \
+            return;                                                                                \
+        }                                                                                          \
+        gAtlasBorder = kind == 2;                                                                  \
+    }
+#else
+#define ATLAS_TEXEL(uv)
 #endif
 
 #if defined(RHS_PASS)
@@ -200,6 +270,7 @@ void main() {
 void main() {
     vec2 uv = gl_FragCoord.xy * uInvSize;
     KEEP_FROZEN(uv)
+    ATLAS_TEXEL(uv)
     loadParams(uv);
     vec4 c[STATE_TEXTURES];
     FOR_EACH_STATE(LOAD_STATE)

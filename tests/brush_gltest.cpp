@@ -23,7 +23,7 @@ SimulatorFactory gpu() {
 // The strokes a designer session might make, steps between them.
 State brushedRun(Simulator& sim, const Session& s) {
     sim.setState(makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, s.seed));
-    const GridDomain grid = s.domain();
+    const Domain grid = s.domain();
     auto stroke = [&](BrushMode mode, float x, float y, float r, int chemical, float value) {
         Brush b;
         b.mode = mode;

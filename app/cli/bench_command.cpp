@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/bench_domains.hpp"
 #include "cli/commands.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/session_run.hpp"
@@ -34,6 +35,7 @@ struct BenchFlags {
     std::string operatorSizes = "512,1024";
     int convergenceSize = 1024;
     bool noConvergence = false;
+    bool noDomains = false;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -346,7 +348,8 @@ void bench(const BenchFlags& f) {
 
     report["results"] = throughputRows(base, f, gpuRows);
     report["operators"] = operatorRows(base, f, gpuRows);
-    // Rows of other domains (atlas, batched sweep) go here, one call each.
+    if (!f.noDomains)
+        report["domains"] = benchDomains(gpuRows, !f.noCpu, f.seconds);
     if (!f.noConvergence)
         report["convergence"] = convergenceRows(f);
     if (!f.json.empty())
@@ -374,6 +377,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--convergence-size", flags->convergenceSize,
                     "grid size for time-to-converged-pattern (default 1024)");
     cmd->add_flag("--no-convergence", flags->noConvergence, "skip time-to-converged-pattern");
+    cmd->add_flag("--no-domains", flags->noDomains, "skip the atlas and batched-sweep rows");
     cmd->callback([flags] { bench(*flags); });
 }
 

@@ -1,8 +1,8 @@
 // morphogen sweep: a grid of independent simulations, one per pair of
 // parameter values, with a labelled contact sheet and per-tile pattern stats.
-// On the GPU the whole grid is one simulation of side-by-side tiles, each
-// periodic on its own (the TILES step variant), so one draw per step advances
-// every tile; on the CPU the tiles run one by one.
+// On either backend the whole grid is one simulation on a tiled grid domain
+// (side-by-side tiles, each periodic on its own): one draw (GPU) or one pass
+// over all tiles (CPU) per step advances every tile.
 
 #include <chrono>
 #include <cmath>
@@ -154,7 +154,7 @@ double seconds(Clock::time_point since) {
 // row-major order, bottom row first.
 std::vector<State> runOneByOne(const Session& batched, const SimulatorFactory& make,
                                Progress* progress) {
-    const int columns = tileColumns(batched), rows = tileRows(batched);
+    const int columns = batched.tiles.columns, rows = batched.tiles.rows;
     std::vector<State> tiles;
     for (int row = 0; row < rows; ++row)
         for (int column = 0; column < columns; ++column) {
@@ -166,7 +166,9 @@ std::vector<State> runOneByOne(const Session& batched, const SimulatorFactory& m
     return tiles;
 }
 
-void sweep(const SweepFlags& f) {
+// The sweep described by the flags, checked; base.dt is the smallest stable
+// dt over the grid's corners.
+SweepSpec sweepSpec(const SweepFlags& f) {
     SweepSpec spec;
     spec.base = explorationBase(f.model, f.preset, "sweep");
     const ReactionModel& model = spec.base.reactionModel();
@@ -204,65 +206,32 @@ void sweep(const SweepFlags& f) {
             base.dt = std::min(base.dt, corner.dt);
             batched.dt = base.dt; // warn once, not at every corner
         }
-    batched = batchedSession(spec);
+    return spec;
+}
 
-    const std::filesystem::path dir(f.out);
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir))
-        throw InputError("--out '" + f.out + "' cannot be created as a folder");
-    checkWritable((dir / "sheet.png").string());
+// Times the tiles run one by one against the batched run and prints both.
+void compareOneByOne(const Session& batched, const SimulatorFactory& make,
+                     const std::string& backendName, const std::vector<State>& tiles,
+                     double batchedSeconds) {
+    const Clock::time_point again = Clock::now();
+    const std::vector<State> single = runOneByOne(batched, make, nullptr);
+    const double singleSeconds = seconds(again);
+    float worst = 0;
+    for (std::size_t t = 0; t < tiles.size(); ++t)
+        for (int c = 0; c < tiles[t].channels(); ++c)
+            for (std::size_t i = 0; i < tiles[t].cellCount(); ++i)
+                worst = std::max(worst, std::fabs(tiles[t].plane(c)[i] - single[t].plane(c)[i]));
+    const int tile = batched.width / batched.tiles.columns;
+    std::printf("%s batched: %.3f s, one by one: %.3f s, one-by-one / batched = %.2f "
+                "(%d tiles of %d x %d, %d steps; max |difference| %.3g)\n",
+                backendName.c_str(), batchedSeconds, singleSeconds, singleSeconds / batchedSeconds,
+                int(tiles.size()), tile, tile, batched.steps, double(worst));
+}
 
-    gl::Backend backend =
-        gl::makeBackend(gl::parseBackendChoice(f.backend), gl::parseContextFlag(f.context),
-                        gl::parseGpuDeviceFlag(f.gpuDevice));
-    std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
-    const bool gpu = backend.context != nullptr;
-    const int tileCount = spec.columns * spec.rows;
-
-    Progress progress("sweep " + std::to_string(spec.columns) + "x" + std::to_string(spec.rows) +
-                          " " + spec.x.param + " x " + spec.y.param,
-                      base.steps);
-    const Clock::time_point start = Clock::now();
-    std::vector<State> tiles;
-    if (gpu) {
-        RunOptions options;
-        options.chunk = runChunk(batched);
-        options.progress = [&](int done, int) { progress.update(done); };
-        const State all = runBatched(batched, backend.makeSimulator, options);
-        for (int row = 0; row < spec.rows; ++row)
-            for (int column = 0; column < spec.columns; ++column)
-                tiles.push_back(extractTile(all, column, row, spec.tile));
-    } else {
-        tiles = runOneByOne(batched, backend.makeSimulator, &progress);
-    }
-    const double mainSeconds = seconds(start);
-    progress.finish("done: " + std::to_string(tileCount) + " tiles of " +
-                    std::to_string(base.steps) + " steps");
-
-    if (f.compare) {
-        if (!gpu) {
-            std::printf("cpu backend: the sweep already runs its %d tiles one by one (%.3f s); "
-                        "only the gpu backend batches them\n",
-                        tileCount, mainSeconds);
-        } else {
-            const Clock::time_point again = Clock::now();
-            const std::vector<State> single = runOneByOne(batched, backend.makeSimulator, nullptr);
-            const double singleSeconds = seconds(again);
-            float worst = 0;
-            for (std::size_t t = 0; t < tiles.size(); ++t)
-                for (int c = 0; c < tiles[t].channels(); ++c)
-                    for (std::size_t i = 0; i < tiles[t].cellCount(); ++i)
-                        worst = std::max(worst,
-                                         std::fabs(tiles[t].plane(c)[i] - single[t].plane(c)[i]));
-            std::printf("gpu batched: %.3f s, one by one: %.3f s, one-by-one / batched = %.2f "
-                        "(%d tiles of %d x %d, %d steps; max |difference| %.3g)\n",
-                        mainSeconds, singleSeconds, singleSeconds / mainSeconds, tileCount,
-                        spec.tile, spec.tile, base.steps, double(worst));
-        }
-    }
-
-    const int chemical = colormapChemical(base.colormap, model);
+// Per-tile stats and classes, row-major from the bottom row.
+std::vector<TileResult> measureTiles(const SweepSpec& spec, const std::vector<State>& tiles) {
+    const ReactionModel& model = spec.base.reactionModel();
+    const int chemical = colormapChemical(spec.base.colormap, model);
     std::vector<TileResult> results;
     for (int row = 0; row < spec.rows; ++row)
         for (int column = 0; column < spec.columns; ++column) {
@@ -275,22 +244,47 @@ void sweep(const SweepFlags& f) {
             r.cls = classifyPattern(r.stats, &model.chemicals()[std::size_t(chemical)]);
             results.push_back(r);
         }
-    writeSheet((dir / "sheet.png").string(), spec, tiles, base.steps);
-    writeStats(dir, spec, results, base.steps, gpu ? "gpu" : "cpu");
-    if (gpu) {
-        saveSessionFile(batched, (dir / "session.json").string());
-    } else {
-        // The tiles ran as separate sessions: the shared one plus the grid.
-        nlohmann::json j = sessionToJson(base);
-        j["sweep"] = {{"x", {{"param", spec.x.param}, {"min", spec.x.min}, {"max", spec.x.max}}},
-                      {"y", {{"param", spec.y.param}, {"min", spec.y.min}, {"max", spec.y.max}}},
-                      {"grid", {spec.columns, spec.rows}},
-                      {"tile", spec.tile}};
-        std::ofstream out(dir / "session.json");
-        out << j.dump(2) << '\n';
-        if (!out)
-            throw std::runtime_error("cannot write " + (dir / "session.json").string());
-    }
+    return results;
+}
+
+void sweep(const SweepFlags& f) {
+    const SweepSpec spec = sweepSpec(f);
+    const Session batched = batchedSession(spec);
+    const std::filesystem::path dir(f.out);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir))
+        throw InputError("--out '" + f.out + "' cannot be created as a folder");
+    checkWritable((dir / "sheet.png").string());
+
+    gl::Backend backend =
+        gl::makeBackend(gl::parseBackendChoice(f.backend), gl::parseContextFlag(f.context),
+                        gl::parseGpuDeviceFlag(f.gpuDevice));
+    std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
+    const std::string backendName = backend.context != nullptr ? "gpu" : "cpu";
+    const int tileCount = spec.columns * spec.rows;
+
+    Progress progress("sweep " + std::to_string(spec.columns) + "x" + std::to_string(spec.rows) +
+                          " " + spec.x.param + " x " + spec.y.param,
+                      batched.steps);
+    const Clock::time_point start = Clock::now();
+    RunOptions options;
+    options.chunk = runChunk(batched);
+    options.progress = [&](int done, int) { progress.update(done); };
+    const State all = runBatched(batched, backend.makeSimulator, options);
+    std::vector<State> tiles;
+    for (int row = 0; row < spec.rows; ++row)
+        for (int column = 0; column < spec.columns; ++column)
+            tiles.push_back(extractTile(all, column, row, spec.tile));
+    const double mainSeconds = seconds(start);
+    progress.finish("done: " + std::to_string(tileCount) + " tiles of " +
+                    std::to_string(batched.steps) + " steps");
+    if (f.compare)
+        compareOneByOne(batched, backend.makeSimulator, backendName, tiles, mainSeconds);
+
+    writeSheet((dir / "sheet.png").string(), spec, tiles, batched.steps);
+    writeStats(dir, spec, measureTiles(spec, tiles), batched.steps, backendName);
+    saveSessionFile(batched, (dir / "session.json").string());
     std::printf("%s\n", dir.string().c_str());
 }
 

@@ -60,6 +60,11 @@ double featureElongation(const PatternFeature& f) {
 
 } // namespace
 
+PatternStats measurePattern(const State& state, int chemical, const Domain& domain) {
+    requireGridAxes(domain, "pattern statistics (FFT wavelength and orientation)");
+    return measurePattern(state, chemical, domain.edges() == EdgeMode::Periodic);
+}
+
 PatternStats measurePattern(const State& state, int chemical, bool periodic) {
     PatternStats stats;
     const std::size_t cells = state.cellCount();

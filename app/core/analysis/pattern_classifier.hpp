@@ -4,6 +4,7 @@
 
 #include "core/models/reaction_model.hpp"
 #include "core/base/state.hpp"
+#include "core/domain/domain.hpp"
 
 namespace morphogen {
 
@@ -46,6 +47,10 @@ constexpr double kElongatedFeature = 2.0;
 
 // Measures one chemical plane; `periodic` as for featureCount().
 PatternStats measurePattern(const State& state, int chemical, bool periodic = true);
+// The same for a state on a domain: its FFT needs grid axes, so an atlas is
+// refused by name (requireGridAxes); a tiled grid's tiles are measured one by
+// one by the sweep, so here the whole state is measured as one grid.
+PatternStats measurePattern(const State& state, int chemical, const Domain& domain);
 
 enum class PatternClass { Uniform, Spots, Stripes, Mixed, Unstable };
 

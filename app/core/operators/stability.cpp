@@ -42,11 +42,33 @@ Kernel5 operatorKernel(const DiffusionOperator& op, int chemical) {
     return k;
 }
 
+namespace {
+
+ExplicitStability gershgorinStability(const DiffusionOperator& op, const std::string& basis) {
+    ExplicitStability result;
+    const double bound = diffusionSymbolBound(op);
+    result.exact = false;
+    result.basis = basis;
+    result.spectralRadius = std::numeric_limits<double>::quiet_NaN();
+    result.maxStableDt = bound > 0 ? 2.0 / bound : std::numeric_limits<double>::infinity();
+    return result;
+}
+
+} // namespace
+
+ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& domain, double dt) {
+    if (domain.kind() == DomainKind::Atlas)
+        return gershgorinStability(op, "Gershgorin bound on the atlas domain (largest rate times "
+                                       "the stencil's bound; an atlas has no Fourier modes)");
+    return explicitStability(op, domain.tileWidth(), domain.tileHeight(), dt);
+}
+
 ExplicitStability explicitStability(const DiffusionOperator& op, int width, int height, double dt) {
     ExplicitStability result;
     if (op.form == DiffusionOperator::Form::TensorMap) {
         const double bound = diffusionSymbolBound(op);
         result.exact = false;
+        result.basis = "Gershgorin bound of the diffusion map";
         result.spectralRadius = std::numeric_limits<double>::quiet_NaN();
         if (bound > 0)
             result.maxStableDt = 2.0 / bound;
@@ -108,7 +130,7 @@ RelaxationWeight relaxationWeight(const Kernel5& kernel, int width, int height, 
 
 float suggestDt(const Session& session) {
     const ExplicitStability s =
-        explicitStability(compileDiffusion(session), session.width, session.height, session.dt);
+        explicitStability(compileDiffusion(session), session.domain(), session.dt);
     const float limit =
         s.maxStableDt ? float(*s.maxStableDt) : std::numeric_limits<float>::infinity();
     // 0.8 of the diffusion limit leaves room for the reaction term's own stiffness.

@@ -24,8 +24,15 @@ struct ExplicitStability {
     double spectralRadius = 0;         // of I + dt A at the given dt, worst chemical
     double maxRealPart = 0;            // of the symbol, worst chemical
     bool exact = true;
+    // How maxStableDt was found, for messages.
+    std::string basis = "spectral radius of I + dt A from the kernel's Fourier symbol";
 };
 ExplicitStability explicitStability(const DiffusionOperator& op, int width, int height, double dt);
+// The same on a domain: a grid's Fourier modes, one tile's on a tiled grid.
+// An atlas has no Fourier modes: a safe bound instead, Gershgorin's (the
+// largest rate times the stencil's bound, diffusionSymbolBound), with
+// exact = false and `basis` saying so.
+ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& domain, double dt);
 
 // The semi-implicit solve (I - dt A) x = rhs by Richardson relaxation passes
 //   x' = x + omega (rhs - (I - dt A) x).

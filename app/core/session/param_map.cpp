@@ -22,7 +22,7 @@ namespace {
 const EnumName<ParamMapSpec::Field> kFields[] = {
     {ParamMapSpec::Field::LinearX, "linear_x"}, {ParamMapSpec::Field::LinearY, "linear_y"},
     {ParamMapSpec::Field::Radial, "radial"},    {ParamMapSpec::Field::Noise, "noise"},
-    {ParamMapSpec::Field::Image, "image"},      {ParamMapSpec::Field::Tiles, "tiles"}};
+    {ParamMapSpec::Field::Image, "image"}};
 
 std::optional<ParamMapSpec::Field> parseField(std::string_view name) {
     return valueNamed(kFields, name);
@@ -54,18 +54,6 @@ std::string toString(ParamMapSpec::Field field) {
 std::vector<float> evaluateParamMap(const ParamMapSpec& spec, int width, int height,
                                     std::uint64_t seed, const std::string& baseDir) {
     std::vector<float> t(std::size_t(width) * height);
-    if (spec.field == ParamMapSpec::Field::Tiles) {
-        // Values as given, not a t in [0, 1]: a tile's value must be exactly
-        // the one its standalone session would use.
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x) {
-                const int column = x * spec.tilesX / width;
-                const int row = spec.tilesY - 1 - y * spec.tilesY / height;
-                t[std::size_t(y) * width + x] =
-                    spec.tileValues[std::size_t(row) * spec.tilesX + column];
-            }
-        return t;
-    }
     if (spec.field == ParamMapSpec::Field::Image) {
         std::string path = spec.image;
         if (!baseDir.empty() && !std::filesystem::path(path).is_absolute())
@@ -95,7 +83,6 @@ std::vector<float> evaluateParamMap(const ParamMapSpec& spec, int width, int hei
                                    cellsY, seed);
                     break;
                 case ParamMapSpec::Field::Image:
-                case ParamMapSpec::Field::Tiles:
                     break;
                 }
                 t[std::size_t(y) * width + x] = float(v);
@@ -116,29 +103,9 @@ std::map<std::string, ParamMapSpec> paramMapsFromJson(const json& j, const std::
         if (!param)
             maps.failField(it.key(), "is not a parameter of model '" + model.name() + "'");
         FieldReader reader(*it, source, maps.path(it.key()));
-        reader.rejectUnknown({"field", "range", "scale", "centre", "image", "tiles", "values"});
+        reader.rejectUnknown({"field", "range", "scale", "centre", "image"});
         ParamMapSpec spec;
         spec.field = reader.choice("field", spec.field, parseField, nameList(kFields));
-        if (spec.field == ParamMapSpec::Field::Tiles) {
-            const json* tiles = reader.find("tiles");
-            if (!tiles || !tiles->is_array() || tiles->size() != 2)
-                reader.failField("tiles", "must be [columns, rows]");
-            spec.tilesX = int(reader.numberValue((*tiles)[0], "tiles[0]", 1, kMaxGridSide));
-            spec.tilesY = int(reader.numberValue((*tiles)[1], "tiles[1]", 1, kMaxGridSide));
-            const json* values = reader.find("values");
-            if (!values || !values->is_array() ||
-                values->size() != std::size_t(spec.tilesX) * std::size_t(spec.tilesY))
-                reader.failField("values", "must hold columns x rows values, bottom row first");
-            for (std::size_t i = 0; i < values->size(); ++i)
-                spec.tileValues.push_back(float(reader.numberValue(
-                    (*values)[i], "values[" + std::to_string(i) + "]", param->min, param->max)));
-            const auto [lo, hi] =
-                std::minmax_element(spec.tileValues.begin(), spec.tileValues.end());
-            spec.min = *lo;
-            spec.max = *hi;
-            result[it.key()] = spec;
-            continue;
-        }
         const json* range = reader.find("range");
         if (!range || !range->is_array() || range->size() != 2)
             reader.failField("range", "must be [min, max] within the parameter's range");
@@ -164,12 +131,6 @@ json paramMapsToJson(const std::map<std::string, ParamMapSpec>& maps) {
     for (const auto& [name, spec] : maps) {
         json m;
         m["field"] = toString(spec.field);
-        if (spec.field == ParamMapSpec::Field::Tiles) {
-            m["tiles"] = {spec.tilesX, spec.tilesY};
-            m["values"] = spec.tileValues;
-            j[name] = m;
-            continue;
-        }
         m["range"] = {spec.min, spec.max};
         if (spec.field == ParamMapSpec::Field::Noise)
             m["scale"] = spec.scale;

@@ -21,10 +21,6 @@ struct ParamMapSpec {
         Radial,  // t = distance from the centre / the half-diagonal
         Noise,   // smooth value noise with features `scale` cells across
         Image,   // t = an image's luminance
-        // A grid of tiles x tiles y equal tiles, one value each from
-        // tileValues (min and max unused): a parameter sweep batched into one
-        // simulation. The step then keeps every tile periodic on its own.
-        Tiles,
     };
     Field field = Field::LinearX;
     float min = 0.0f;
@@ -32,8 +28,6 @@ struct ParamMapSpec {
     float scale = 16.0f;                  // Noise
     float centreX = 0.5f, centreY = 0.5f; // Radial
     std::string image;                    // Image (relative to the session's folder)
-    int tilesX = 1, tilesY = 1;           // Tiles: columns and rows
-    std::vector<float> tileValues;        // Tiles: row-major, row 0 at the bottom as in a plot
 };
 std::string toString(ParamMapSpec::Field field);
 

@@ -13,6 +13,7 @@
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/json_fields.hpp"
+#include "core/domain/atlas.hpp"
 
 namespace morphogen {
 
@@ -35,6 +36,23 @@ std::optional<Integrator> parseIntegrator(std::string_view name) {
 
 std::string integratorNames() {
     return nameList(kIntegrators);
+}
+
+Domain Session::domain() const {
+    if (atlas)
+        return Domain::atlas(atlas);
+    if (tiles.active())
+        return Domain::tiledGrid(width, height, tiles.columns, tiles.rows);
+    return GridDomain(width, height, edges);
+}
+
+void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas) {
+    assert(atlas);
+    session.width = atlas->width();
+    session.height = atlas->height();
+    session.schedule.clear();
+    session.tiles = TileGrid{};
+    session.atlas = std::move(atlas);
 }
 
 const ReactionModel& Session::reactionModel() const {
@@ -61,6 +79,35 @@ std::array<float, 3> colour(const FieldReader& reader, const std::string& key,
     for (std::size_t i = 0; i < 3; ++i)
         rgb[i] = float(reader.numberValue((*j)[i], key + "[" + std::to_string(i) + "]", 0, 1));
     return rgb;
+}
+
+// A batched sweep's tiles, checked against the rest of the session.
+TileGrid tilesFromJson(const json& j, const FieldReader& top, const Session& s,
+                       const ReactionModel& model) {
+    TileGrid tiles = tileGridFromJson(j, top.source(), model);
+    if (s.width % tiles.columns != 0 || s.height % tiles.rows != 0 || s.width / tiles.columns < 4 ||
+        s.height / tiles.rows < 4)
+        top.failField("tiles", "grid [" + std::to_string(tiles.columns) + ", " +
+                                   std::to_string(tiles.rows) + "] must split the " +
+                                   std::to_string(s.width) + " x " + std::to_string(s.height) +
+                                   " grid evenly into tiles of at least 4 x 4 cells");
+    if (s.edges != EdgeMode::Periodic)
+        top.failField("tiles", "need periodic edges (each tile wraps on its own)");
+    if (!s.schedule.empty())
+        top.failField("tiles", "cannot be combined with a coarse-to-fine schedule");
+    if (!s.paramMaps.empty())
+        top.failField("tiles", "cannot be combined with param_maps (tiles.params sets "
+                               "per-tile values)");
+    if (tiles.params.size() > 4)
+        top.failField("tiles", "may vary at most 4 parameters per tile");
+    for (const Stage& stage : s.stages) {
+        if (!stage.model.empty())
+            top.failField("tiles", "cannot be combined with a stage that changes the model");
+        for (const auto& [name, value] : stage.params)
+            if (tiles.params.count(name))
+                top.failField("stages", "change '" + name + "', which tiles sets per tile");
+    }
+    return tiles;
 }
 
 } // namespace
@@ -192,8 +239,8 @@ ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const Reac
 Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
     top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
-                       "integrator", "relaxation_passes", "jacobi_sweeps", "schedule", "stages", "param_maps", "dt",
-                       "steps", "seed", "init", "colormap"});
+                       "integrator", "relaxation_passes", "jacobi_sweeps", "schedule", "stages",
+                       "param_maps", "tiles", "dt", "steps", "seed", "init", "colormap"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");
@@ -227,6 +274,9 @@ Session sessionFromJson(const json& root, const std::string& source) {
     if (const json* maps = top.find("param_maps"))
         readParamMaps(top, *maps, *model, s);
 
+    if (const json* tiles = top.find("tiles"))
+        s.tiles = tilesFromJson(*tiles, top, s, *model);
+
     // A session's "init" replaces the model's default start whole: fields it
     // leaves out are empty, not inherited.
     s.init = model->defaultInit();
@@ -257,6 +307,8 @@ json sessionToJson(const Session& s) {
         j["stages"] = stagesToJson(s.stages);
     if (!s.paramMaps.empty())
         j["param_maps"] = paramMapsToJson(s.paramMaps);
+    if (s.tiles.active())
+        j["tiles"] = tileGridToJson(s.tiles);
     if (!s.schedule.empty()) {
         j["schedule"] = json::array();
         for (const ScheduleLevel& l : s.schedule)
@@ -423,6 +475,15 @@ void validateSession(const Session& s, const std::string& source) {
         throw InputError(source + ": dt must be a positive number");
     if (s.steps < 0)
         throw InputError(source + ": steps must be >= 0");
+    // A size override must keep a batched sweep's tiles whole.
+    if (s.tiles.active() &&
+        (s.width % s.tiles.columns != 0 || s.height % s.tiles.rows != 0 ||
+         s.width / s.tiles.columns < 4 || s.height / s.tiles.rows < 4 ||
+         s.edges != EdgeMode::Periodic))
+        throw InputError(source + ": tiles grid [" + std::to_string(s.tiles.columns) + ", " +
+                         std::to_string(s.tiles.rows) + "] must split the " +
+                         std::to_string(s.width) + " x " + std::to_string(s.height) +
+                         " grid evenly into periodic tiles of at least 4 x 4 cells");
 }
 
 } // namespace morphogen

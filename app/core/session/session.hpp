@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -11,9 +12,10 @@
 
 #include "core/session/cascade.hpp"
 #include "core/models/diffusion_spec.hpp"
-#include "core/domain/grid_domain.hpp"
+#include "core/domain/domain.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/session/param_map.hpp"
+#include "core/session/tile_grid.hpp"
 #include "core/models/reaction_model.hpp"
 
 namespace morphogen {
@@ -71,6 +73,9 @@ struct Session {
     std::vector<Stage> stages;
     // Parameters that vary over the grid, by name.
     std::map<std::string, ParamMapSpec> paramMaps;
+    // A batched parameter sweep: the grid as independent tiles with per-tile
+    // parameter values (a TiledGrid domain). Inactive by default.
+    TileGrid tiles;
     // Cell size relative to the finest level (h); coarse levels have h > 1 and
     // their derivative kernels are scaled by 1/h^order. Set per level, not saved.
     double gridSpacing = 1.0;
@@ -80,13 +85,21 @@ struct Session {
     // Folder that relative paths in the session (images) resolve against; set
     // by loadSessionFile, not serialised.
     std::string baseDir;
+    // A surface atlas to simulate on instead of the grid (Lo et al.): set by
+    // useAtlas from engine code (the mesh pipeline), not serialised. The grid
+    // is then the atlas texture (width x height) and its unused texels.
+    std::shared_ptr<const Atlas> atlas;
 
-    GridDomain domain() const { return {width, height, edges}; }
+    // The grid, the tiled grid of a batched sweep, or the atlas.
+    Domain domain() const;
     const ReactionModel& reactionModel() const; // asserts a known model
     // The model whose chemicals the final state holds: the last stage's that
     // changes model (a cascade such as Turk's giraffe), else reactionModel().
     const ReactionModel& outputModel() const;
 };
+
+// Runs the session on `atlas`: its size becomes the atlas texture's.
+void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas);
 
 // Largest accepted grid side; the GPU may allow less (checked at allocation).
 constexpr int kMaxGridSide = 16384;

@@ -62,7 +62,7 @@ std::string toString(BrushMode mode) {
     return "?";
 }
 
-BrushRegion BrushRegion::disc(const GridDomain& domain, float centreX, float centreY, float radius,
+BrushRegion BrushRegion::disc(const Domain& domain, float centreX, float centreY, float radius,
                               float falloff) {
     if (!std::isfinite(centreX) || !std::isfinite(centreY))
         throw InputError("brush centre must be finite");
@@ -118,7 +118,7 @@ BrushRegion BrushRegion::disc(const GridDomain& domain, float centreX, float cen
     return region;
 }
 
-BrushRegion BrushRegion::fromCells(const GridDomain& domain, std::vector<Cell> cells) {
+BrushRegion BrushRegion::fromCells(const Domain& domain, std::vector<Cell> cells) {
     const std::uint32_t n = std::uint32_t(domain.cellCount());
     std::sort(cells.begin(), cells.end(),
               [](const Cell& a, const Cell& b) { return a.index < b.index; });
@@ -151,7 +151,7 @@ BrushRegion BrushRegion::fromCells(const GridDomain& domain, std::vector<Cell> c
     return region;
 }
 
-void checkBrush(const Brush& brush, const ReactionModel& model, const GridDomain& domain) {
+void checkBrush(const Brush& brush, const ReactionModel& model, const Domain& domain) {
     const BrushRegion& region = brush.region;
     if (!region.empty() &&
         (region.gridWidth() != domain.width() || region.gridHeight() != domain.height()))

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/domain/grid_domain.hpp"
+#include "core/domain/domain.hpp"
 #include "core/session/session.hpp"
 
 namespace morphogen {
@@ -34,11 +34,11 @@ public:
     // clamped edges cut it. falloff in [0, 1]: the outer fraction of the
     // radius ramps the weight linearly down to 0 at the rim (0: a hard disc).
     // Throws InputError for a negative or non-finite radius or falloff.
-    static BrushRegion disc(const GridDomain& domain, float centreX, float centreY, float radius,
+    static BrushRegion disc(const Domain& domain, float centreX, float centreY, float radius,
                             float falloff = 0.0f);
     // Any set of cells of the grid (weights in (0, 1]; a cell at most once),
     // bounded by one rectangle.
-    static BrushRegion fromCells(const GridDomain& domain, std::vector<Cell> cells);
+    static BrushRegion fromCells(const Domain& domain, std::vector<Cell> cells);
 
     const std::vector<Cell>& cells() const { return m_cells; } // ascending index
     const std::vector<CellRect>& rects() const { return m_rects; }
@@ -81,7 +81,7 @@ struct Brush {
 // Throws InputError naming the field and what is accepted: a chemical or
 // parameter the model lacks, a non-finite value, a painted value outside
 // the parameter's range, a region for another grid size.
-void checkBrush(const Brush& brush, const ReactionModel& model, const GridDomain& domain);
+void checkBrush(const Brush& brush, const ReactionModel& model, const Domain& domain);
 
 // Randomise's noise at a cell, in [-1, 1): a pure function of seed and cell.
 float brushNoise(std::uint64_t seed, std::uint32_t cell);

@@ -22,10 +22,14 @@
 #endif
 
 // The loops below must be inlined into the clones to be built for AVX2 too.
+// Lambdas holding a whole row's work need it said as well: GCC otherwise
+// keeps them as one baseline (SSE2) function that the AVX2 clone calls.
 #if defined(__GNUC__)
 #define MORPHOGEN_INLINE inline __attribute__((always_inline))
+#define MORPHOGEN_INLINE_LAMBDA __attribute__((always_inline))
 #else
 #define MORPHOGEN_INLINE inline
+#define MORPHOGEN_INLINE_LAMBDA
 #endif
 
 namespace morphogen {
@@ -178,22 +182,25 @@ private:
 
 // --- Row access ----------------------------------------------------------------
 
-// The 2R+1 rows around y of one plane, wrapped or clamped.
+// The 2R+1 rows around y of one plane, wrapped or clamped by the domain
+// (inside y's tile on a tiled grid).
 template <int R>
-MORPHOGEN_INLINE void rowWindow(const float* plane, int y, int w, int h, EdgeMode edges,
+MORPHOGEN_INLINE void rowWindow(const float* plane, int y, int w, const Domain& domain,
                                 const float** rows) {
     for (int dy = -R; dy <= R; ++dy)
-        rows[dy + R] = plane + std::size_t(GridDomain::wrapOrClamp(y + dy, h, edges)) * w;
+        rows[dy + R] = plane + std::size_t(domain.neighbourRow(y, dy)) * w;
 }
 
-// Calls cell(x, column) for every column of a row, column(dx) being the index
-// of the column dx away. Interior columns come first in one unit-stride,
-// vectorised loop; the R columns at each edge wrap or clamp.
+// Calls cell(x, column) for every column of the segment [base, base + w) of a
+// row, column(dx) being the index of the column dx away. Interior columns come
+// first in one unit-stride, vectorised loop; the R columns at each end wrap or
+// clamp inside the segment. A grid's row is one segment at base 0 (a constant
+// once inlined); a tiled grid's row is one segment per tile, each periodic.
 template <int R, class Cell>
-MORPHOGEN_INLINE void forEachColumn(int w, EdgeMode edges, const Cell& cell) {
+MORPHOGEN_INLINE void forEachColumn(int base, int w, EdgeMode edges, const Cell& cell) {
     const int x0 = std::min(R, w), x1 = std::max(x0, w - R);
 #pragma omp simd
-    for (int x = x0; x < x1; ++x)
+    for (int x = base + x0; x < base + x1; ++x)
         cell(x, [x](int dx) { return x + dx; });
     // One loop with one call, so that GCC inlines it into the AVX2 clone too:
     // SSE code called from there pays for the switch between encodings.
@@ -201,8 +208,22 @@ MORPHOGEN_INLINE void forEachColumn(int w, EdgeMode edges, const Cell& cell) {
         const int x = i < x0 ? i : x1 + i - x0;
         int columns[2 * R + 1];
         for (int dx = -R; dx <= R; ++dx)
-            columns[dx + R] = GridDomain::wrapOrClamp(x + dx, w, edges);
-        cell(x, [&columns](int dx) { return columns[dx + R]; });
+            columns[dx + R] = base + GridDomain::wrapOrClamp(x + dx, w, edges);
+        cell(base + x, [&columns](int dx) { return columns[dx + R]; });
+    }
+}
+
+// Calls segment(base, width, params) for the column segments of row y: the
+// whole row with the session's parameters on a grid, one per tile with that
+// tile's parameters on a tiled grid.
+template <bool Tiled, class Segment>
+MORPHOGEN_INLINE void forEachSegment(const StepConstants& k, int y, int w, const Segment& segment) {
+    if constexpr (!Tiled) {
+        segment(0, w, k.params.data());
+    } else {
+        const int tw = k.domain.tileWidth(), ty = y / k.domain.tileHeight();
+        for (int tx = 0; tx < k.domain.columns(); ++tx)
+            segment(tx * tw, tw, k.tileParamsAt(tx, ty));
     }
 }
 
@@ -213,12 +234,11 @@ MORPHOGEN_INLINE void forEachColumn(int w, EdgeMode edges, const Cell& cell) {
 // cell, and no row buffers. Chemicals that do not diffuse get a term of
 // exactly 0, as the generic path has it (fusedExplicitStep checks their
 // operator is zero).
-template <class Cell, class Term>
+template <class Cell, class Term, bool Tiled>
 MORPHOGEN_VECTOR_CLONES void stepRows(const StepConstants& k, const State& in, State& out, int y0,
                                       int y1) {
     constexpr int n = Cell::kChemicals, r = Term::kRadius;
-    const Cell cell(k.params.data());
-    const int w = in.width(), h = in.height();
+    const int w = in.width();
     const EdgeMode edges = k.domain.edges();
     const float dt = k.dt;
     Term terms[n];
@@ -232,34 +252,38 @@ MORPHOGEN_VECTOR_CLONES void stepRows(const StepConstants& k, const State& in, S
         const float* rows[n][2 * r + 1];
         float* next[n];
         for (int c = 0; c < n; ++c) {
-            rowWindow<r>(in.plane(c), y, w, h, edges, rows[c]);
+            rowWindow<r>(in.plane(c), y, w, k.domain, rows[c]);
             next[c] = out.plane(c) + std::size_t(y) * w;
         }
-        forEachColumn<r>(w, edges, [&](int x, const auto& column) {
-            float conc[n], dcdt[n];
-            for (int c = 0; c < n; ++c)
-                conc[c] = rows[c][r][x];
-            cell.react(conc, dcdt);
-            // Unrolled before the vectoriser runs, which a 5x5 body would not be by default.
+        const auto segment = [&](int base, int width, const float* params) MORPHOGEN_INLINE_LAMBDA {
+            const Cell cell(params);
+            forEachColumn<r>(base, width, edges, [&](int x, const auto& column) {
+                float conc[n], dcdt[n];
+                for (int c = 0; c < n; ++c)
+                    conc[c] = rows[c][r][x];
+                cell.react(conc, dcdt);
+                // Unrolled before the vectoriser runs, which a 5x5 body would not be by default.
 #pragma GCC unroll 4
-            for (int c = 0; c < n; ++c) {
-                const float* const* window = rows[c];
-                const float diffusion =
-                    Cell::diffuses(c)
-                        ? terms[c]([&](int dx, int dy) { return window[dy + r][column(dx)]; })
-                        : 0.0f;
-                next[c][x] = std::min(std::max(conc[c] + dt * (dcdt[c] + diffusion), lo[c]), hi[c]);
-            }
-        });
+                for (int c = 0; c < n; ++c) {
+                    const float* const* window = rows[c];
+                    const float diffusion =
+                        Cell::diffuses(c)
+                            ? terms[c]([&](int dx, int dy) { return window[dy + r][column(dx)]; })
+                            : 0.0f;
+                    next[c][x] =
+                        std::min(std::max(conc[c] + dt * (dcdt[c] + diffusion), lo[c]), hi[c]);
+                }
+            });
+        };
+        forEachSegment<Tiled>(k, y, w, segment);
     }
 }
 
 // rhs = c + dt react(c) on rows [y0, y1).
-template <class Cell>
+template <class Cell, bool Tiled>
 MORPHOGEN_VECTOR_CLONES void rhsRows(const StepConstants& k, const State& in, State& out, int y0,
                                      int y1) {
     constexpr int n = Cell::kChemicals;
-    const Cell cell(k.params.data());
     const int w = in.width();
     const float dt = k.dt;
     for (int y = y0; y < y1; ++y) {
@@ -269,30 +293,34 @@ MORPHOGEN_VECTOR_CLONES void rhsRows(const StepConstants& k, const State& in, St
             row[c] = in.plane(c) + std::size_t(y) * w;
             rhs[c] = out.plane(c) + std::size_t(y) * w;
         }
-        // A lambda, so that conc and dcdt are not omp simd's per-lane arrays,
-        // which GCC fails to vectorise.
-        const auto rhsCell = [&](int x) {
-            float conc[n], dcdt[n];
-            for (int c = 0; c < n; ++c)
-                conc[c] = row[c][x];
-            cell.react(conc, dcdt);
-            for (int c = 0; c < n; ++c)
-                rhs[c][x] = conc[c] + dt * dcdt[c];
-        };
+        const auto segment = [&](int base, int width, const float* params) MORPHOGEN_INLINE_LAMBDA {
+            const Cell cell(params);
+            // A lambda, so that conc and dcdt are not omp simd's per-lane arrays,
+            // which GCC fails to vectorise.
+            const auto rhsCell = [&](int x) {
+                float conc[n], dcdt[n];
+                for (int c = 0; c < n; ++c)
+                    conc[c] = row[c][x];
+                cell.react(conc, dcdt);
+                for (int c = 0; c < n; ++c)
+                    rhs[c][x] = conc[c] + dt * dcdt[c];
+            };
 #pragma omp simd
-        for (int x = 0; x < w; ++x)
-            rhsCell(x);
+            for (int x = base; x < base + width; ++x)
+                rhsCell(x);
+        };
+        forEachSegment<Tiled>(k, y, w, segment);
     }
 }
 
 // One relaxation pass on rows [y0, y1). Chemicals are independent here, so
 // each runs on its own; one with a zero operator skips the stencil (its term
 // is exactly 0, as the generic path's).
-template <class Term>
+template <class Term, bool Tiled>
 MORPHOGEN_VECTOR_CLONES void relaxRows(const StepConstants& k, const State& x, const State& rhs,
                                        State& out, int y0, int y1) {
     constexpr int r = Term::kRadius;
-    const int w = x.width(), h = x.height();
+    const int w = x.width();
     const EdgeMode edges = k.domain.edges();
     const float dt = k.dt;
     for (int c = 0; c < k.chemicals; ++c) {
@@ -302,7 +330,7 @@ MORPHOGEN_VECTOR_CLONES void relaxRows(const StepConstants& k, const State& x, c
         const float lo = k.clampMin[c], hi = k.clampMax[c];
         for (int y = y0; y < y1; ++y) {
             const float* window[2 * r + 1];
-            rowWindow<r>(x.plane(c), y, w, h, edges, window);
+            rowWindow<r>(x.plane(c), y, w, k.domain, window);
             const float* x0 = window[r];
             const float* b = rhs.plane(c) + std::size_t(y) * w;
             float* next = out.plane(c) + std::size_t(y) * w;
@@ -316,9 +344,12 @@ MORPHOGEN_VECTOR_CLONES void relaxRows(const StepConstants& k, const State& x, c
                     update(i, 0.0f);
                 continue;
             }
-            forEachColumn<r>(w, edges, [&](int i, const auto& column) {
-                update(i, term([&](int dx, int dy) { return window[dy + r][column(dx)]; }));
-            });
+            const auto segment = [&](int base, int width, const float*) MORPHOGEN_INLINE_LAMBDA {
+                forEachColumn<r>(base, width, edges, [&](int i, const auto& column) {
+                    update(i, term([&](int dx, int dy) { return window[dy + r][column(dx)]; }));
+                });
+            };
+            forEachSegment<Tiled>(k, y, w, segment);
         }
     }
 }
@@ -350,8 +381,18 @@ template <class Cell, class Term> StepRowsKernel explicitIf(const StepConstants&
         for (int c = 0; c < Cell::kChemicals; ++c)
             if (Term(k, c).isZero() == Cell::diffuses(c))
                 return nullptr;
-        return &stepRows<Cell, Term>;
+        return k.tiled() ? &stepRows<Cell, Term, true> : &stepRows<Cell, Term, false>;
     }
+}
+
+template <class Term> RelaxRowsKernel relaxFor(const StepConstants& k) {
+    return k.tiled() ? &relaxRows<Term, true> : &relaxRows<Term, false>;
+}
+
+// Per-cell parameters stop the fused kernels, except a tiled grid's
+// per-tile ones (one Cell per tile segment) that are not diffusion rates.
+bool fusedParamsOk(const StepConstants& k) {
+    return !k.hasParamMaps() || k.paramsPerTileOnly();
 }
 
 } // namespace
@@ -374,7 +415,10 @@ KernelTaps kernelTaps(const DiffusionOperator& op, int chemical) {
 }
 
 StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants& k) {
-    if (k.hasParamMaps())
+    // On an atlas the kernel steps the texture as a clamped grid, right for
+    // every interior texel; the caller redoes the border texels (see
+    // CpuSimulator::redoAtlasBorder).
+    if (!fusedParamsOk(k))
         return nullptr;
     const bool folded = foldsKernels(k.op);
     return withCell(model, [&](auto tag) -> StepRowsKernel {
@@ -398,31 +442,33 @@ StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants
 }
 
 StepRowsKernel fusedRhsPass(const ReactionModel& model, const StepConstants& k) {
-    if (k.hasParamMaps())
+    if (!fusedParamsOk(k) || k.domain.kind() == DomainKind::Atlas)
         return nullptr;
-    return withCell(model, [](auto tag) -> StepRowsKernel {
+    return withCell(model, [&](auto tag) -> StepRowsKernel {
         using Cell = typename decltype(tag)::Type;
         if constexpr (Cell::kChemicals > kMaxFusedChemicals)
             return nullptr;
         else
-            return &rhsRows<Cell>;
+            return k.tiled() ? &rhsRows<Cell, true> : &rhsRows<Cell, false>;
     });
 }
 
 RelaxRowsKernel fusedRelaxation(const StepConstants& k) {
     // The sweep reads no reaction parameter, and fromSession refuses mapped
     // diffusion rates with the semi-implicit integrator: param maps are fine.
+    if (k.domain.kind() == DomainKind::Atlas)
+        return nullptr;
     switch (k.op.form) {
     case DiffusionOperator::Form::Laplacian5:
-        return &relaxRows<LaplacianTerm<Stencil::FivePoint>>;
+        return relaxFor<LaplacianTerm<Stencil::FivePoint>>(k);
     case DiffusionOperator::Form::Laplacian9:
-        return &relaxRows<LaplacianTerm<Stencil::NinePoint>>;
+        return relaxFor<LaplacianTerm<Stencil::NinePoint>>(k);
     case DiffusionOperator::Form::Kernel3:
-        return foldsKernels(k.op) ? &relaxRows<KernelTerm<1, true>>
-                                  : &relaxRows<KernelTerm<1, false>>;
+        return foldsKernels(k.op) ? relaxFor<KernelTerm<1, true>>(k)
+                                  : relaxFor<KernelTerm<1, false>>(k);
     case DiffusionOperator::Form::Kernel5:
-        return foldsKernels(k.op) ? &relaxRows<KernelTerm<2, true>>
-                                  : &relaxRows<KernelTerm<2, false>>;
+        return foldsKernels(k.op) ? relaxFor<KernelTerm<2, true>>(k)
+                                  : relaxFor<KernelTerm<2, false>>(k);
     case DiffusionOperator::Form::TensorMap:
         break;
     }

@@ -49,6 +49,8 @@ using RelaxRowsKernel = void (*)(const StepConstants& k, const State& x, const S
 // per-cell parameters, or a diffusion operator that is zero on a chemical that
 // normally diffuses (or not zero on one that does not): the generic path's
 // term is then exactly 0.
+// On an atlas domain the kernel treats the texture as a clamped grid: right
+// for interior texels only, so the caller must redo the tile-border texels.
 StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants& k);
 
 // Semi-implicit right-hand side: out = c + dt react(c). Null for other models,

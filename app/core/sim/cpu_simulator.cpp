@@ -13,6 +13,8 @@
 
 #include <omp.h>
 
+#include "core/domain/atlas.hpp"
+#include "core/domain/atlas_diagonals.hpp"
 #include "core/sim/cpu_kernels.hpp"
 
 namespace morphogen {
@@ -89,20 +91,30 @@ void laplacianRow(const float* up, const float* row, const float* down, float* o
     }
 }
 
+// Calls segment(base, width, edges) for the column segments of a row: the
+// whole row on a grid, one periodic segment per tile on a tiled grid.
+template <class Segment> void forEachRowSegment(const Domain& domain, const Segment& segment) {
+    if (domain.kind() != DomainKind::TiledGrid) {
+        segment(0, domain.width(), domain.edges());
+        return;
+    }
+    for (int tx = 0; tx < domain.columns(); ++tx)
+        segment(tx * domain.tileWidth(), domain.tileWidth(), EdgeMode::Periodic);
+}
+
 // Sum of a (3x3 or 5x5) kernel's taps over one row of one plane, in
 // kernelTaps()' order and folding, as the fused kernels sum them (which adds
 // the zero taps skipped here: only infinite neighbours could tell). R a
 // constant and the bounds set inside the tap loop: GCC's code for either
-// change measured ~20% slower (6 chemicals, 128^2, one thread).
+// change measured ~20% slower (6 chemicals, 128^2, one thread). On a tiled
+// grid every tile's columns wrap inside the tile.
 template <int R>
-void kernelRow(const KernelTaps& taps, const float* plane, int w, int h, int y, EdgeMode edges,
+void kernelRow(const KernelTaps& taps, const float* plane, const Domain& domain, int y,
                float* out) {
     assert(taps.radius == R);
+    const int w = domain.width();
     std::fill(out, out + w, 0.0f);
-    const auto rowAt = [&](int dy) {
-        return plane + std::size_t(GridDomain::wrapOrClamp(y + dy, h, edges)) * w;
-    };
-    const auto column = [&](int x) { return GridDomain::wrapOrClamp(x, w, edges); };
+    const auto rowAt = [&](int dy) { return plane + std::size_t(domain.neighbourRow(y, dy)) * w; };
     for (int i = 0; i < taps.count; ++i) {
         const KernelTap tap = taps.taps[std::size_t(i)];
         if (tap.weight == 0.0f)
@@ -110,27 +122,34 @@ void kernelRow(const KernelTaps& taps, const float* plane, int w, int h, int y, 
         const int dx = tap.dx;
         const float weight = tap.weight;
         const float* row = rowAt(tap.dy);
-        // Interior columns are unit-stride; the few edge columns wrap or clamp.
-        const int x0 = std::min(R, w), x1 = std::max(x0, w - R);
-        auto edgeColumns = [&](const auto& value) {
-            for (int x = 0; x < x0; ++x)
-                out[x] += value(x);
-            for (int x = x1; x < w; ++x)
-                out[x] += value(x);
-        };
-        if (!taps.folded || i == 0) {
+        // The tap and, folded, its point mirror: w * (c(dx, dy) + c(-dx, -dy)).
+        const bool pair = taps.folded && i != 0;
+        const float* mirror = pair ? rowAt(-tap.dy) : row;
+        forEachRowSegment(domain, [&](int base, int sw, EdgeMode edges) {
+            const float* r = row + base;
+            const float* m = mirror + base;
+            float* o = out + base;
+            const auto column = [&](int x) { return GridDomain::wrapOrClamp(x, sw, edges); };
+            // Interior columns are unit-stride; the few edge columns wrap or clamp.
+            const int x0 = std::min(R, sw), x1 = std::max(x0, sw - R);
+            if (!pair) {
+#pragma omp simd
+                for (int x = x0; x < x1; ++x)
+                    o[x] += weight * r[x + dx];
+                for (int x = 0; x < x0; ++x)
+                    o[x] += weight * r[column(x + dx)];
+                for (int x = x1; x < sw; ++x)
+                    o[x] += weight * r[column(x + dx)];
+                return;
+            }
 #pragma omp simd
             for (int x = x0; x < x1; ++x)
-                out[x] += weight * row[x + dx];
-            edgeColumns([&](int x) { return weight * row[column(x + dx)]; });
-            continue;
-        }
-        // The tap and its point mirror: w * (c(dx, dy) + c(-dx, -dy)).
-        const float* mirror = rowAt(-tap.dy);
-#pragma omp simd
-        for (int x = x0; x < x1; ++x)
-            out[x] += weight * (row[x + dx] + mirror[x - dx]);
-        edgeColumns([&](int x) { return weight * (row[column(x + dx)] + mirror[column(x - dx)]); });
+                o[x] += weight * (r[x + dx] + m[x - dx]);
+            for (int x = 0; x < x0; ++x)
+                o[x] += weight * (r[column(x + dx)] + m[column(x - dx)]);
+            for (int x = x1; x < sw; ++x)
+                o[x] += weight * (r[column(x + dx)] + m[column(x - dx)]);
+        });
     }
 }
 
@@ -172,11 +191,18 @@ CpuSimulator::CpuSimulator(const Session& session)
       m_k(StepConstants::fromSession(session)),
       m_current(session.width, session.height, m_k.chemicals),
       m_next(session.width, session.height, m_k.chemicals) {
-    // Its kernels wrap at the grid's edges, not at tile edges: sweeps run
-    // each tile on its own CPU simulator instead (sweep.hpp: runTile).
-    if (m_k.tiled())
-        throw InputError("the cpu backend runs sweep tiles one by one, not a batched session; "
-                         "use --backend gpu for a batched sweep session");
+    if (const Atlas* atlas = m_k.domain.atlasMap()) {
+        for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+            if (!atlas->used(i))
+                m_unusedCells.push_back(i);
+        const std::vector<std::uint32_t>& border = atlas->borderCells();
+        for (int y = 0; y <= atlas->height(); ++y)
+            m_borderRows.push_back(std::size_t(
+                std::lower_bound(border.begin(), border.end(), atlas->cellAt(0, y)) -
+                border.begin()));
+        if (m_k.op.form == DiffusionOperator::Form::Laplacian9)
+            m_diagonals = atlasDiagonals(*atlas);
+    }
     pickKernels();
 }
 
@@ -207,6 +233,85 @@ void CpuSimulator::restoreFrozen() {
         float* to = m_next.plane(c);
         for (std::uint32_t i : m_frozenCells)
             to[i] = from[i];
+        for (std::uint32_t i : m_unusedCells)
+            to[i] = from[i];
+    }
+}
+
+void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil,
+                                     float* out) const {
+    const Atlas& atlas = *m_k.domain.atlasMap();
+    const int w = atlas.width(), h = atlas.height();
+    // Every texel on the texture's outer ring is a border or unused texel, so
+    // clamping there only keeps the reads inside; those results are replaced.
+    const float* up = plane + std::size_t(GridDomain::wrapOrClamp(y - 1, h, EdgeMode::Clamped)) * w;
+    const float* row = plane + std::size_t(y) * w;
+    const float* down =
+        plane + std::size_t(GridDomain::wrapOrClamp(y + 1, h, EdgeMode::Clamped)) * w;
+    laplacianRow(up, row, down, out, w, EdgeMode::Clamped, stencil);
+    const std::vector<std::uint32_t>& border = atlas.borderCells();
+    const std::size_t rowStart = std::size_t(y) * w;
+    for (std::size_t b = m_borderRows[std::size_t(y)]; b < m_borderRows[std::size_t(y) + 1]; ++b)
+        out[border[b] - rowStart] = atlasLaplacian(plane, border[b], stencil);
+}
+
+float CpuSimulator::atlasLaplacian(const float* plane, std::uint32_t cell, Stencil stencil) const {
+    const std::array<std::uint32_t, 4>& n = m_k.domain.atlasMap()->neighbours()[cell];
+    // The interior loop's order: -x, +x, then the two vertical neighbours.
+    const float sides = plane[n[2]] + plane[n[0]] + plane[n[3]] + plane[n[1]];
+    if (stencil == Stencil::FivePoint)
+        return sides - 4.0f * plane[cell];
+    // Each diagonal the mean of its two orders (equal away from irregular
+    // corners, where 0.5 (v + v) == v exactly); the grid's order of corners.
+    const std::array<std::uint32_t, 8>& d = m_diagonals[cell];
+    const float corners =
+        0.5f * (plane[d[0]] + plane[d[4]]) + 0.5f * (plane[d[1]] + plane[d[5]]) +
+        0.5f * (plane[d[2]] + plane[d[6]]) + 0.5f * (plane[d[3]] + plane[d[7]]);
+    return (4.0f * sides + corners - 20.0f * plane[cell]) * (1.0f / 6.0f);
+}
+
+void CpuSimulator::redoAtlasBorder() {
+    const Stencil stencil = m_k.op.form == DiffusionOperator::Form::Laplacian5
+                                ? Stencil::FivePoint
+                                : Stencil::NinePoint;
+    const int nc = m_k.chemicals;
+    const float dt = m_k.dt;
+    const std::vector<std::uint32_t>& border = m_k.domain.atlasMap()->borderCells();
+    // As the generic path: the reaction of a block of border texels gathered
+    // into rows (one react() call per block), the term, the update and clamp.
+#pragma omp parallel if (threaded(m_current))
+    {
+        const FlushDenormals flush;
+        constexpr std::size_t kBlock = 256;
+        std::vector<float> scratch(kBlock * 2 * std::size_t(nc));
+        RowView view;
+        for (int c = 0; c < nc; ++c) {
+            view.c[c] = scratch.data() + std::size_t(c) * kBlock;
+            view.dcdt[c] = scratch.data() + std::size_t(nc + c) * kBlock;
+        }
+#pragma omp for schedule(static)
+        for (std::size_t b0 = 0; b0 < border.size(); b0 += kBlock) {
+            const std::size_t count = std::min(kBlock, border.size() - b0);
+            view.n = int(count);
+            for (int c = 0; c < nc; ++c) {
+                float* conc = scratch.data() + std::size_t(c) * kBlock;
+                for (std::size_t i = 0; i < count; ++i)
+                    conc[i] = m_current.plane(c)[border[b0 + i]];
+            }
+            m_model.react(view, m_k.params.data());
+            for (int c = 0; c < nc; ++c) {
+                const float d = m_k.op.rates[std::size_t(c)];
+                const float* plane = m_current.plane(c);
+                for (std::size_t i = 0; i < count; ++i) {
+                    const std::uint32_t cell = border[b0 + i];
+                    const float term = d == 0.0f ? 0.0f : d * atlasLaplacian(plane, cell, stencil);
+                    m_next.plane(c)[cell] =
+                        std::min(std::max(view.c[c][i] + dt * (view.dcdt[c][i] + term),
+                                          m_k.clampMin[c]),
+                                 m_k.clampMax[c]);
+                }
+            }
+        }
     }
 }
 
@@ -241,13 +346,15 @@ void CpuSimulator::step() {
         return;
     }
     forEachBand(m_current, [&](int y0, int y1) { m_explicitStep(m_k, m_current, m_next, y0, y1); });
+    if (m_k.domain.kind() == DomainKind::Atlas)
+        redoAtlasBorder();
     restoreFrozen();
     std::swap(m_current, m_next);
 }
 
 void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) const {
     const int w = m_current.width(), h = m_current.height();
-    const EdgeMode edges = m_k.domain.edges();
+    const Domain& domain = m_k.domain;
     const DiffusionOperator& op = m_k.op;
     switch (op.form) {
     case DiffusionOperator::Form::Laplacian5:
@@ -257,12 +364,25 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
             std::fill(out, out + w, 0.0f);
             return;
         }
-        laplacianRow(plane + std::size_t(GridDomain::wrapOrClamp(y - 1, h, edges)) * w,
-                     plane + std::size_t(y) * w,
-                     plane + std::size_t(GridDomain::wrapOrClamp(y + 1, h, edges)) * w, out, w,
-                     edges,
-                     op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
-                                                                    : Stencil::NinePoint);
+        if (domain.kind() == DomainKind::Atlas) {
+            atlasLaplacianRow(plane, y,
+                              op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
+                                                                              : Stencil::NinePoint,
+                              out);
+#pragma omp simd
+            for (int x = 0; x < w; ++x)
+                out[x] = d * out[x];
+            return;
+        }
+        const float* up = plane + std::size_t(domain.neighbourRow(y, -1)) * w;
+        const float* row = plane + std::size_t(y) * w;
+        const float* down = plane + std::size_t(domain.neighbourRow(y, 1)) * w;
+        const Stencil stencil = op.form == DiffusionOperator::Form::Laplacian5
+                                    ? Stencil::FivePoint
+                                    : Stencil::NinePoint;
+        forEachRowSegment(domain, [&](int base, int sw, EdgeMode edges) {
+            laplacianRow(up + base, row + base, down + base, out + base, sw, edges, stencil);
+        });
 #pragma omp simd
         for (int x = 0; x < w; ++x)
             out[x] = d * out[x];
@@ -271,12 +391,13 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
     case DiffusionOperator::Form::Kernel3:
     case DiffusionOperator::Form::Kernel5:
         if (op.form == DiffusionOperator::Form::Kernel3)
-            kernelRow<1>(m_kernelTaps[std::size_t(c)], plane, w, h, y, edges, out);
+            kernelRow<1>(m_kernelTaps[std::size_t(c)], plane, domain, y, out);
         else
-            kernelRow<2>(m_kernelTaps[std::size_t(c)], plane, w, h, y, edges, out);
+            kernelRow<2>(m_kernelTaps[std::size_t(c)], plane, domain, y, out);
         return;
     case DiffusionOperator::Form::TensorMap:
-        tensorMapRow(op, c, plane, w, h, y, edges, out);
+        // fromSession refuses the tensor map on tiled grids and atlases.
+        tensorMapRow(op, c, plane, w, h, y, domain.edges(), out);
         return;
     }
 }

@@ -62,6 +62,22 @@ private:
     State m_rhs;                              // SemiImplicit: c + dt f(c) of the step being solved
     std::vector<std::uint32_t> m_frozenCells; // indices of frozen cells (cascades)
     std::vector<std::uint8_t> m_frozenMask;   // the same cells as a mask (brush hold/release)
+    // Atlas domains: texels outside every tile (kept as they are, like frozen
+    // cells), and per row y the border cells borderCells()[m_borderRows[y],
+    // m_borderRows[y + 1]) that go through the index array.
+    std::vector<std::uint32_t> m_unusedCells;
+    std::vector<std::size_t> m_borderRows;
+    // 9-point on an atlas: per cell its diagonals in both orders (atlas_diagonals.hpp).
+    std::vector<std::array<std::uint32_t, 8>> m_diagonals;
+    // The 5- or 9-point Laplacian of one atlas row: interior texels by +-1 /
+    // +-width in one vectorised loop, then the row's border texels by the
+    // index array (and the diagonals).
+    void atlasLaplacianRow(const float* plane, int y, Stencil stencil, float* out) const;
+    // The Laplacian (rate 1) at one atlas texel through the index array.
+    float atlasLaplacian(const float* plane, std::uint32_t cell, Stencil stencil) const;
+    // After a fused step over an atlas texture (a clamped grid to the kernel):
+    // the explicit step of every tile-border texel again, through the map.
+    void redoAtlasBorder();
 };
 
 } // namespace morphogen

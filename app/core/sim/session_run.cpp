@@ -10,7 +10,7 @@
 #include "core/numerics/resample.hpp"
 #include "core/operators/stability.hpp"
 #include "core/session/cascade.hpp"
-#include "core/sim/sweep.hpp"
+#include "core/sim/initial_state.hpp"
 
 namespace morphogen {
 
@@ -70,10 +70,8 @@ void SessionRun::enterSegment(std::size_t i) {
     const Session& part = segment.session;
     const ReactionModel& model = part.reactionModel();
     if (i == 0)
-        // A batched sweep starts every tile from its own initial state.
-        m_state = isBatchedSweep(part) ? batchedInitialState(part)
-                                       : makeInitialState(part.init, model, part.params, part.width,
-                                                          part.height, part.seed);
+        m_state = initialState(part); // a tiled domain starts every tile on its own
+
     else if (m_state.width() != part.width || m_state.height() != part.height)
         m_state = resampleBilinear(m_state, part.width, part.height, part.edges);
     // The rule reads the previous stage's result, with that stage's model.

@@ -1,87 +1,149 @@
 #include "core/sim/simulator.hpp"
 
+#include <algorithm>
 #include <cassert>
+#include <limits>
 
 #include "core/base/errors.hpp"
 #include "core/numerics/kernel_symbol.hpp"
-#include "core/session/param_map.hpp"
 #include "core/operators/stability.hpp"
+#include "core/session/param_map.hpp"
 
 namespace morphogen {
 
-StepConstants StepConstants::fromSession(const Session& session) {
-    const ReactionModel& model = session.reactionModel();
-    StepConstants k;
-    k.chemicals = int(model.chemicals().size());
-    k.dt = session.dt;
-    k.domain = session.domain();
-    k.params = model.packParams(session.params);
+namespace {
 
-    // A mapped diffusion rate: compile the operator at rate 1 for it.
-    Session unitRates = session;
-    if (session.paramMaps.size() > 4)
-        throw InputError("at most 4 parameters can vary per cell (param_maps has " +
-                         std::to_string(session.paramMaps.size()) + ")");
-    k.paramMaps = State(session.width, session.height, int(session.paramMaps.size()));
-    for (const auto& [name, spec] : session.paramMaps) {
-        const int index = int(k.mappedParams.size());
-        for (std::size_t p = 0; p < model.params().size(); ++p)
-            if (model.params()[p].name == name)
-                k.mappedParams.push_back(int(p));
-        if (spec.field == ParamMapSpec::Field::Tiles) {
-            if (spec.tilesX < 1 || spec.tilesY < 1 || session.width % spec.tilesX ||
-                session.height % spec.tilesY ||
-                spec.tileValues.size() != std::size_t(spec.tilesX) * std::size_t(spec.tilesY))
-                throw InputError("param_maps '" + name + "': the tiles must split the " +
-                                 std::to_string(session.width) + " x " +
-                                 std::to_string(session.height) +
-                                 " grid evenly, with one value per tile");
-            const std::array<int, 2> tile = {session.width / spec.tilesX,
-                                             session.height / spec.tilesY};
-            if (k.tiled() && k.tile != tile)
-                throw InputError("param_maps '" + name + "': every tiles map needs the same tiles");
-            if (tile[0] < 4 || tile[1] < 4)
-                throw InputError("param_maps '" + name + "': tiles need at least 4 x 4 cells");
-            if (session.edges != EdgeMode::Periodic)
-                throw InputError("param_maps '" + name + "': tiles need periodic edges");
-            k.tile = tile;
+int paramIndex(const ReactionModel& model, const std::string& name) {
+    for (std::size_t p = 0; p < model.params().size(); ++p)
+        if (model.params()[p].name == name)
+            return int(p);
+    return -1;
+}
+
+// Adds a per-cell parameter `name`; returns its plane. A chemical whose
+// diffusion rate it is gets a mapped rate, and unitRates compiles it at 1.
+float* addMappedParam(StepConstants& k, const ReactionModel& model, const std::string& name,
+                      Session& unitRates) {
+    const int index = int(k.mappedParams.size());
+    k.mappedParams.push_back(paramIndex(model, name));
+    for (int c = 0; c < k.chemicals; ++c)
+        if (model.chemicals()[std::size_t(c)].diffusionParam == name) {
+            k.mappedRate[std::size_t(c)] = index;
+            unitRates.params[name] = 1.0f;
         }
+    return k.paramMaps.plane(index);
+}
+
+// The session's param_maps, or a tiled grid's per-tile values: both become
+// per-cell planes (constant per tile for the latter) plus, for tiles, the
+// full per-tile parameter table.
+void loadVaryingParams(StepConstants& k, const Session& session, Session& unitRates) {
+    const ReactionModel& model = session.reactionModel();
+    const std::size_t varying = session.paramMaps.size() + session.tiles.params.size();
+    if (varying > 4)
+        throw InputError("at most 4 parameters can vary per cell (param_maps and tiles.params "
+                         "have " +
+                         std::to_string(varying) + ")");
+    if (k.tiled() && !session.paramMaps.empty())
+        throw InputError("param_maps cannot vary a parameter over a tiled grid domain (a batched "
+                         "sweep); tiles.params sets per-tile values");
+    k.paramMaps = State(session.width, session.height, int(varying));
+    for (const auto& [name, spec] : session.paramMaps) {
         const std::vector<float> values =
             evaluateParamMap(spec, session.width, session.height, session.seed, session.baseDir);
-        std::copy(values.begin(), values.end(), k.paramMaps.plane(index));
-        for (int c = 0; c < k.chemicals; ++c)
-            if (model.chemicals()[std::size_t(c)].diffusionParam == name) {
-                k.mappedRate[std::size_t(c)] = index;
-                unitRates.params[name] = 1.0f;
-            }
+        std::copy(values.begin(), values.end(), addMappedParam(k, model, name, unitRates));
     }
-    k.op = compileDiffusion(unitRates);
+    if (!k.tiled())
+        return;
+    const Domain& d = k.domain;
+    const int columns = d.columns(), rows = d.rows(), tw = d.tileWidth(), th = d.tileHeight();
+    // Storage row ty (from the top) is sweep row rows - 1 - ty (from the bottom).
+    k.tileParams.resize(std::size_t(columns) * std::size_t(rows) * k.params.size());
+    for (int ty = 0; ty < rows; ++ty)
+        for (int tx = 0; tx < columns; ++tx) {
+            ParamValues values = session.params;
+            for (const auto& [name, perTile] : session.tiles.params)
+                values[name] = session.tiles.value(name, tx, rows - 1 - ty);
+            const std::vector<float> packed = model.packParams(values);
+            std::copy(packed.begin(), packed.end(),
+                      k.tileParams.begin() +
+                          std::ptrdiff_t((std::size_t(ty) * columns + tx) * k.params.size()));
+        }
+    for (const auto& [name, perTile] : session.tiles.params) {
+        float* plane = addMappedParam(k, model, name, unitRates);
+        const int p = k.mappedParams.back();
+        for (int y = 0; y < session.height; ++y)
+            for (int x = 0; x < session.width; ++x)
+                plane[std::size_t(y) * session.width + x] = k.tileParamsAt(x / tw, y / th)[p];
+    }
+}
+
+std::string operatorName(DiffusionOperator::Form form) {
+    using Form = DiffusionOperator::Form;
+    switch (form) {
+    case Form::Laplacian5:
+        return "isotropic 5-point Laplacian";
+    case Form::Laplacian9:
+        return "isotropic 9-point Laplacian (stencil 9-point)";
+    case Form::Kernel3:
+        return "anisotropic 3x3 tensor (Witkin-Kass)";
+    case Form::Kernel5:
+        return "generalized 5x5 kernel (McGraw)";
+    case Form::TensorMap:
+        return "anisotropic tensor map (diffusion map)";
+    }
+    return "diffusion";
+}
+
+// Refuses operators and integrators the domain cannot run (see core/domain/domain.hpp).
+void checkOperatorOnDomain(const StepConstants& k) {
+    using Form = DiffusionOperator::Form;
+    if (k.domain.kind() == DomainKind::Atlas) {
+        // Only the four neighbours of the connectivity map and the 9-point
+        // stencil's averaged diagonals (atlas_diagonals.hpp) are defined
+        // everywhere; distance-2 taps and tensor cross terms are not.
+        if (k.op.form != Form::Laplacian5 && k.op.form != Form::Laplacian9)
+            throw InputError("the " + operatorName(k.op.form) +
+                             " diffusion operator cannot run on an atlas domain (accepted there: "
+                             "isotropic diffusion, 5-point or 9-point stencil)");
+        if (k.integrator == Integrator::SemiImplicit)
+            throw InputError("the semi_implicit integrator cannot run on an atlas domain (its "
+                             "relaxation weight comes from a grid's Fourier symbol); use "
+                             "explicit_euler");
+        if (k.hasParamMaps())
+            throw InputError("param_maps (fields in grid x and y) cannot vary a parameter over an "
+                             "atlas domain");
+    }
     // Its map texture would need tile-local fetches too; sweeps of tensor
     // fields are left to one-by-one runs.
-    if (k.tiled() && k.op.form == DiffusionOperator::Form::TensorMap)
-        throw InputError("tiled param_maps do not support a diffusion tensor map");
-    if (session.integrator == Integrator::SemiImplicit)
-        for (int m : k.mappedRate)
-            if (m >= 0)
-                throw InputError("the semi_implicit integrator needs constant diffusion rates; "
-                                 "a param_maps entry varies one");
-    k.integrator = session.integrator;
-    k.relaxationPasses = session.relaxationPasses;
-    if (k.integrator == Integrator::SemiImplicit) {
-        if (k.op.form == DiffusionOperator::Form::TensorMap)
-            throw InputError("the semi_implicit integrator does not support diffusion maps "
-                             "(its Jacobi sweep needs a constant kernel); use explicit_euler");
-        for (int c = 0; c < k.chemicals; ++c) {
-            const Kernel5 kernel = operatorKernel(k.op, c);
-            if (analyzeExplicitStep(kernel, session.width, session.height, k.dt).maxRealPart > 1e-9)
-                throw InputError("the semi_implicit solve needs a diffusion operator without "
-                                 "growing modes; set \"stabilize\": true");
-            const RelaxationWeight weight =
-                relaxationWeight(kernel, session.width, session.height, k.dt);
-            k.omega[std::size_t(c)] = float(weight.omega);
-            k.contraction = std::max(k.contraction, weight.contraction);
-        }
+    if (k.tiled() && k.op.form == Form::TensorMap)
+        throw InputError("a diffusion tensor map cannot run on a tiled grid domain (a batched "
+                         "sweep); run the tiles one by one");
+}
+
+// The semi-implicit solve's per-chemical Richardson weights.
+void loadRelaxationWeights(StepConstants& k) {
+    for (int m : k.mappedRate)
+        if (m >= 0)
+            throw InputError("the semi_implicit integrator needs constant diffusion rates; "
+                             "a param_maps or tiles entry varies one");
+    if (k.op.form == DiffusionOperator::Form::TensorMap)
+        throw InputError("the semi_implicit integrator does not support diffusion maps "
+                         "(its Jacobi sweep needs a constant kernel); use explicit_euler");
+    // The Fourier analysis of a tiled grid is that of one periodic tile.
+    const int w = k.domain.tileWidth(), h = k.domain.tileHeight();
+    for (int c = 0; c < k.chemicals; ++c) {
+        const Kernel5 kernel = operatorKernel(k.op, c);
+        if (analyzeExplicitStep(kernel, w, h, k.dt).maxRealPart > 1e-9)
+            throw InputError("the semi_implicit solve needs a diffusion operator without "
+                             "growing modes; set \"stabilize\": true");
+        const RelaxationWeight weight = relaxationWeight(kernel, w, h, k.dt);
+        k.omega[std::size_t(c)] = float(weight.omega);
+        k.contraction = std::max(k.contraction, weight.contraction);
     }
+}
+
+void loadClamps(StepConstants& k, const ReactionModel& model) {
     for (int c = 0; c < kMaxChemicals; ++c) {
         if (c < k.chemicals) {
             const ChemicalSpec& spec = model.chemicals()[std::size_t(c)];
@@ -92,6 +154,36 @@ StepConstants StepConstants::fromSession(const Session& session) {
             k.clampMax[c] = std::numeric_limits<float>::infinity();
         }
     }
+}
+
+} // namespace
+
+bool StepConstants::paramsPerTileOnly() const {
+    if (!tiled())
+        return false;
+    for (int m : mappedRate)
+        if (m >= 0)
+            return false;
+    return true;
+}
+
+StepConstants StepConstants::fromSession(const Session& session) {
+    const ReactionModel& model = session.reactionModel();
+    StepConstants k;
+    k.chemicals = int(model.chemicals().size());
+    k.dt = session.dt;
+    k.domain = session.domain();
+    k.params = model.packParams(session.params);
+
+    Session unitRates = session; // a mapped diffusion rate is compiled at rate 1
+    loadVaryingParams(k, session, unitRates);
+    k.op = compileDiffusion(unitRates);
+    k.integrator = session.integrator;
+    k.relaxationPasses = session.relaxationPasses;
+    checkOperatorOnDomain(k);
+    if (k.integrator == Integrator::SemiImplicit)
+        loadRelaxationWeights(k);
+    loadClamps(k, model);
     return k;
 }
 

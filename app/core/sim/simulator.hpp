@@ -31,7 +31,7 @@ struct StepConstants {
     std::array<float, kMaxChemicals> clampMin = {};
     std::array<float, kMaxChemicals> clampMax = {};
     std::vector<float> params; // model declaration order
-    GridDomain domain;
+    Domain domain;
     DiffusionOperator op;
     Integrator integrator = Integrator::ExplicitEuler;
     int relaxationPasses = 8;
@@ -49,13 +49,22 @@ struct StepConstants {
     // backends multiply its result by the cell's rate.
     std::array<int, kMaxChemicals> mappedRate = noMappedRates();
 
-    // Cells per tile when a param map is a Tiles field, else {0, 0}: the grid
-    // is then independent tiles, each periodic on its own (a batched sweep).
-    // Only the GPU step implements this; the CPU runs such tiles one by one.
-    std::array<int, 2> tile = {0, 0};
+    // TiledGrid (a batched sweep): every tile's full parameter vector, tile
+    // (tx, ty) at (ty * columns + tx) * params.size(), ty counted from the top
+    // as rows are stored. The swept ones are also in paramMaps, constant per
+    // tile, for the GPU and the generic CPU path; the fused CPU kernels read
+    // this table instead, one tile segment of a row at a time.
+    std::vector<float> tileParams;
 
     bool hasParamMaps() const { return !mappedParams.empty(); }
-    bool tiled() const { return tile[0] > 0; }
+    bool tiled() const { return domain.kind() == DomainKind::TiledGrid; }
+    // Whether every per-cell parameter is constant per tile and none is a
+    // diffusion rate: the fused kernels then run with one parameter set per tile.
+    bool paramsPerTileOnly() const;
+    const float* tileParamsAt(int tx, int ty) const {
+        return tileParams.data() +
+               (std::size_t(ty) * std::size_t(domain.columns()) + std::size_t(tx)) * params.size();
+    }
 
     // Throws InputError for combinations the backends cannot run.
     static StepConstants fromSession(const Session& session);

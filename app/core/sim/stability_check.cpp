@@ -24,7 +24,7 @@ template <typename... Args> std::string format(const char* pattern, Args... args
 float checkExplicitStep(const Session& segment, const std::string& what, bool verbose,
                         StabilityReport& report) {
     const ExplicitStability st =
-        explicitStability(compileDiffusion(segment), segment.width, segment.height, segment.dt);
+        explicitStability(compileDiffusion(segment), segment.domain(), segment.dt);
     if (!st.maxStableDt) {
         std::ostringstream os;
         os << what
@@ -40,13 +40,15 @@ float checkExplicitStep(const Session& segment, const std::string& what, bool ve
         const float capped = float(0.9 * *st.maxStableDt);
         report.notes.push_back(
             {true, format("%sdt %g exceeds the explicit stability limit %.4g (%s); capped to %.4g",
-                          what.c_str(), double(segment.dt), *st.maxStableDt,
-                          st.exact ? "spectral radius of I + dt A from the kernel's Fourier symbol"
-                                   : "Gershgorin bound of the diffusion map",
+                          what.c_str(), double(segment.dt), *st.maxStableDt, st.basis.c_str(),
                           double(capped))});
         report.capped = true;
         return capped;
     }
+    if (!st.exact && verbose)
+        report.notes.push_back(
+            {false, format("%sexplicit step: dt %g within the %s (largest stable dt %.4g)",
+                           what.c_str(), double(segment.dt), st.basis.c_str(), *st.maxStableDt)});
     if (st.exact && verbose)
         report.notes.push_back(
             {false, format("%sexplicit step: spectral radius of I + dt A = %.4f at dt %g (largest "

@@ -4,18 +4,11 @@
 
 #include "core/base/errors.hpp"
 #include "core/models/initial_condition.hpp"
+#include "core/sim/initial_state.hpp"
 
 namespace morphogen {
 
 namespace {
-
-// The first Tiles map of a batched session (all of them share the tiling).
-const ParamMapSpec& tilesOf(const Session& batched) {
-    for (const auto& [name, spec] : batched.paramMaps)
-        if (spec.field == ParamMapSpec::Field::Tiles)
-            return spec;
-    throw InputError("session '" + batched.name + "' is not a batched sweep (no tiles param map)");
-}
 
 // Runs `steps` in chunks so progress can be reported and a cancel honoured.
 State runFrom(Simulator& simulator, const State& start, int steps, const RunOptions& options) {
@@ -45,67 +38,35 @@ Session batchedSession(const SweepSpec& spec) {
     s.height = spec.rows * spec.tile;
     s.schedule.clear();
     s.stages.clear();
+    s.paramMaps.clear();
+    s.tiles = TileGrid{};
+    s.tiles.columns = spec.columns;
+    s.tiles.rows = spec.rows;
     for (const SweepAxis* axis : {&spec.x, &spec.y}) {
-        ParamMapSpec map;
-        map.field = ParamMapSpec::Field::Tiles;
-        map.tilesX = spec.columns;
-        map.tilesY = spec.rows;
+        std::vector<float>& values = s.tiles.params[axis->param];
         for (int row = 0; row < spec.rows; ++row)
             for (int column = 0; column < spec.columns; ++column)
-                map.tileValues.push_back(axis == &spec.x ? sweepValue(*axis, column, spec.columns)
-                                                         : sweepValue(*axis, row, spec.rows));
-        map.min = axis->min;
-        map.max = axis->max;
-        s.paramMaps[axis->param] = map;
+                values.push_back(axis == &spec.x ? sweepValue(*axis, column, spec.columns)
+                                                 : sweepValue(*axis, row, spec.rows));
     }
     return s;
-}
-
-bool isBatchedSweep(const Session& session) {
-    for (const auto& [name, spec] : session.paramMaps)
-        if (spec.field == ParamMapSpec::Field::Tiles)
-            return true;
-    return false;
-}
-
-int tileColumns(const Session& batched) {
-    return tilesOf(batched).tilesX;
-}
-int tileRows(const Session& batched) {
-    return tilesOf(batched).tilesY;
 }
 
 Session tileSession(const Session& batched, int column, int row) {
-    const ParamMapSpec& tiles = tilesOf(batched);
+    if (!batched.tiles.active())
+        throw InputError("session '" + batched.name + "' is not a batched sweep (no tiles)");
     Session s = batched;
-    s.width = batched.width / tiles.tilesX;
-    s.height = batched.height / tiles.tilesY;
-    s.paramMaps.clear();
-    for (const auto& [name, spec] : batched.paramMaps) {
-        if (spec.field != ParamMapSpec::Field::Tiles)
-            throw InputError("a sweep's param maps must all be tiles ('" + name + "' is " +
-                             toString(spec.field) + ")");
-        s.params[name] = spec.tileValues[std::size_t(row) * spec.tilesX + column];
-    }
+    s.width = batched.width / batched.tiles.columns;
+    s.height = batched.height / batched.tiles.rows;
+    s.tiles = TileGrid{};
+    for (const auto& [name, values] : batched.tiles.params)
+        s.params[name] = batched.tiles.value(name, column, row);
     return s;
-}
-
-State batchedInitialState(const Session& batched) {
-    const ReactionModel& model = batched.reactionModel();
-    const int columns = tileColumns(batched), rows = tileRows(batched);
-    State state(batched.width, batched.height, int(model.chemicals().size()));
-    for (int row = 0; row < rows; ++row)
-        for (int column = 0; column < columns; ++column) {
-            const Session t = tileSession(batched, column, row);
-            pasteTile(state, makeInitialState(t.init, model, t.params, t.width, t.height, t.seed),
-                      column, row);
-        }
-    return state;
 }
 
 State runBatched(const Session& batched, const SimulatorFactory& make, const RunOptions& options) {
     std::unique_ptr<Simulator> simulator = make(batched);
-    return runFrom(*simulator, batchedInitialState(batched), batched.steps, options);
+    return runFrom(*simulator, initialState(batched), batched.steps, options);
 }
 
 State runTile(const Session& tile, const SimulatorFactory& make, const RunOptions& options) {

@@ -28,24 +28,18 @@ struct SweepSpec {
 // The axis value of column (or row) i of n: min + (max - min) i / (n - 1).
 float sweepValue(const SweepAxis& axis, int i, int n);
 
-// The whole sweep as one session of columns*tile x rows*tile cells whose
-// swept parameters are Tiles param maps. Any session with Tiles maps is a
-// batched sweep for the functions below (e.g. with one tile's values edited).
+// The whole sweep as one session of columns*tile x rows*tile cells on a
+// tiled grid domain whose tiles carry the swept values (session.tiles). Any
+// session with active tiles is a batched sweep for the functions below (e.g.
+// with one tile's values edited).
 Session batchedSession(const SweepSpec& spec);
 
 // Tile (column, row) of a batched session as a standalone session: its size,
-// its parameter values, no param maps.
+// its parameter values, no tiles.
 Session tileSession(const Session& batched, int column, int row);
-int tileColumns(const Session& batched);
-// Whether a session is a batched sweep (it has a tiles param map).
-bool isBatchedSweep(const Session& session);
-int tileRows(const Session& batched);
-
-// The batched initial state: each tile's standalone initial state side by side.
-State batchedInitialState(const Session& batched);
 
 // Runs a batched session (steps from session.steps) on one simulator, from
-// batchedInitialState. There is no blow-up check: a tile that leaves the
+// initialState (initial_state.hpp). There is no blow-up check: a tile that leaves the
 // model's range is reported by its stats, not by stopping the others.
 State runBatched(const Session& batched, const SimulatorFactory& make,
                  const RunOptions& options = {});

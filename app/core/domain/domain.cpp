@@ -1,0 +1,45 @@
+#include "core/domain/domain.hpp"
+
+#include "core/base/errors.hpp"
+#include "core/domain/atlas.hpp"
+
+namespace morphogen {
+
+std::string toString(DomainKind kind) {
+    switch (kind) {
+    case DomainKind::Grid:
+        return "grid";
+    case DomainKind::TiledGrid:
+        return "tiled grid";
+    case DomainKind::Atlas:
+        return "atlas";
+    }
+    return "grid";
+}
+
+void requireGridAxes(const Domain& domain, const std::string& feature) {
+    if (domain.kind() == DomainKind::Atlas)
+        throw InputError(feature + " needs a grid's x and y axes and cannot run on an atlas "
+                                   "domain (accepted: grid, tiled grid)");
+}
+
+Domain Domain::tiledGrid(int width, int height, int columns, int rows) {
+    assert(columns >= 1 && rows >= 1 && width % columns == 0 && height % rows == 0);
+    Domain d(GridDomain(width, height, EdgeMode::Periodic));
+    d.m_kind = DomainKind::TiledGrid;
+    d.m_columns = columns;
+    d.m_rows = rows;
+    return d;
+}
+
+Domain Domain::atlas(std::shared_ptr<const Atlas> atlas) {
+    assert(atlas);
+    // Edges mean nothing here: every step goes through the atlas, and an
+    // unglued tile edge is zero-flux.
+    Domain d(GridDomain(atlas->width(), atlas->height(), EdgeMode::Clamped));
+    d.m_kind = DomainKind::Atlas;
+    d.m_atlas = std::move(atlas);
+    return d;
+}
+
+} // namespace morphogen

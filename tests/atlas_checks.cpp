@@ -1,0 +1,45 @@
+#include "atlas_checks.hpp"
+
+#include <random>
+
+namespace morphogen::test {
+
+Session atlasSession(std::shared_ptr<const Atlas> atlas, Stencil stencil) {
+    Session s = loadPreset("gs_coral");
+    s.diffusion.stencil = stencil;
+    useAtlas(s, std::move(atlas));
+    return s;
+}
+
+Session pureDiffusionSession(std::shared_ptr<const Atlas> atlas, Stencil stencil) {
+    Session s = atlasSession(std::move(atlas), stencil);
+    s.params["F"] = 0.0f;
+    s.params["k"] = 0.0f;
+    return s;
+}
+
+State randomUsedState(const Atlas& atlas, unsigned seed) {
+    State s(atlas.width(), atlas.height(), 2);
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i) {
+        s.plane(0)[i] = atlas.used(i) ? uniform(random) : 7.0f;
+        s.plane(1)[i] = atlas.used(i) ? 0.0f : 7.0f;
+    }
+    return s;
+}
+
+double usedSum(const State& s, const Atlas& atlas, int c) {
+    double sum = 0;
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+        if (atlas.used(i))
+            sum += double(s.plane(c)[i]);
+    return sum;
+}
+
+std::vector<std::uint32_t> cornerTexels(const Atlas& atlas, int tile) {
+    const std::uint32_t a = atlas.cornerCell(tile, 0);
+    return {a, atlas.step(a, Direction::MinusX).cell, atlas.step(a, Direction::MinusY).cell};
+}
+
+} // namespace morphogen::test

@@ -1,0 +1,86 @@
+// Atlas domains on the GPU (the ATLAS variant of glsl/step.frag): it must
+// agree with the CPU backend on the cube and on rotated tiles, conserve mass,
+// and copy unused texels through.
+
+#include <gtest/gtest.h>
+
+#include "atlas_checks.hpp"
+#include "core/models/initial_condition.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "gl/gpu_simulator.hpp"
+#include "gl_test_support.hpp"
+#include "test_support.hpp"
+
+using namespace morphogen;
+
+namespace {
+
+template <class Sim> State runOn(const Session& s, const State& start, int steps) {
+    test::glContext();
+    Sim sim(s);
+    sim.setState(start);
+    sim.run(steps);
+    return sim.state();
+}
+
+void expectBackendsAgree(std::shared_ptr<const Atlas> atlas, Stencil stencil) {
+    SCOPED_TRACE(stencil == Stencil::FivePoint ? "5-point" : "9-point");
+    const Session s = test::atlasSession(atlas, stencil);
+    const State start =
+        makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, 11);
+    const State cpu = runOn<CpuSimulator>(s, start, 60);
+    const State gpu = runOn<gl::GpuSimulator>(s, start, 60);
+    // Float sums in the same order on both, but llvmpipe and drivers may
+    // contract multiply-adds: relative 1e-5 of the value range after 60 steps.
+    EXPECT_LT(test::maxAbsDifference(cpu, gpu), 1e-5f * test::maxAbsValue(cpu));
+    EXPECT_GT(test::maxAbsDifference(cpu, start), 1e-3f) << "nothing happened";
+}
+
+} // namespace
+
+TEST(AtlasGpu, AgreesWithTheCpuOnTheCube) {
+    for (Stencil stencil : {Stencil::FivePoint, Stencil::NinePoint})
+        expectBackendsAgree(std::make_shared<const Atlas>(Atlas::cube(16)), stencil);
+}
+
+TEST(AtlasGpu, AgreesWithTheCpuOnRotatedTiles) {
+    for (Stencil stencil : {Stencil::FivePoint, Stencil::NinePoint})
+        expectBackendsAgree(std::make_shared<const Atlas>(Atlas::rotatedTiles(8)), stencil);
+}
+
+TEST(AtlasGpu, AgreesWithTheCpuAroundAValence5Corner) {
+    // Five tiles around one vertex, every quad's corner 0 at it; outer edges open.
+    std::vector<std::array<int, 4>> quads;
+    for (int i = 0; i < 5; ++i)
+        quads.push_back({0, 1 + i, 6 + i, 1 + (i + 1) % 5});
+    for (Stencil stencil : {Stencil::FivePoint, Stencil::NinePoint})
+        expectBackendsAgree(std::make_shared<const Atlas>(Atlas::fromQuads(8, quads)), stencil);
+}
+
+TEST(AtlasGpu, ConservesMassOnTheCubeAndSpreadsSymmetricallyAtACorner) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    const std::vector<std::uint32_t> corner = test::cornerTexels(*atlas, 0);
+    State start(atlas->width(), atlas->height(), 2);
+    for (std::uint32_t c : corner)
+        start.plane(0)[c] = 1.0f;
+    const State end = runOn<gl::GpuSimulator>(test::pureDiffusionSession(atlas), start, 40);
+    EXPECT_NEAR(test::usedSum(end, *atlas, 0), 3.0, 3e-5);
+    for (std::uint32_t c : corner)
+        EXPECT_NEAR(end.plane(0)[c], end.plane(0)[corner[0]], 1e-6f);
+    EXPECT_LT(end.plane(0)[corner[0]], 0.5f) << "nothing diffused";
+}
+
+TEST(AtlasGpu, UnusedTexelsCopyThrough) {
+    auto open = std::make_shared<Atlas>(8, 3, 2);
+    open->glue(0, TileEdge::PlusX, 1, TileEdge::MinusX);
+    open->glue(0, TileEdge::PlusY, 2, TileEdge::MinusY);
+    const std::shared_ptr<const Atlas> atlas = open;
+    const State start = test::randomUsedState(*atlas, 4);
+    const Session s = test::pureDiffusionSession(atlas);
+    const State gpu = runOn<gl::GpuSimulator>(s, start, 30);
+    const State cpu = runOn<CpuSimulator>(s, start, 30);
+    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+        if (!atlas->used(i))
+            ASSERT_EQ(gpu.plane(0)[i], 7.0f);
+    EXPECT_LT(test::maxAbsDifference(cpu, gpu), 1e-5f * test::maxAbsValue(cpu));
+}
