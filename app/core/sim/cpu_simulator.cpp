@@ -213,6 +213,8 @@ void CpuSimulator::setState(const State& state) {
 }
 
 void CpuSimulator::run(int steps) {
+    if (runTilesApart(steps))
+        return;
     for (int i = 0; i < steps; ++i)
         step();
 }
@@ -515,6 +517,7 @@ double CpuSimulator::lastSolveResidual() const {
 }
 
 void CpuSimulator::pickKernels() {
+    m_tileRuns.clear(); // built from the old constants
     m_explicitStep = fusedExplicitStep(m_model, m_k);
     m_rhsPass = fusedRhsPass(m_model, m_k);
     m_relax = fusedRelaxation(m_k);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 
 #include "core/sim/cpu_kernels.hpp"
 #include "core/sim/simulator.hpp"
@@ -46,7 +47,14 @@ private:
     // Picks the fused kernels for the current constants (a rate of 0 may
     // need the generic path).
     void pickKernels();
+    // A tiled grid (a batched sweep) advances each tile `steps` steps on its
+    // own, tiles in parallel, while it fits in cache (cpu_tile_runs.cpp);
+    // false where the one-pass row kernels must run instead.
+    bool runTilesApart(int steps);
 
+    // runTilesApart: one simulator per tile (row-major from the bottom row),
+    // made on first use and dropped whenever the constants change.
+    std::vector<std::unique_ptr<CpuSimulator>> m_tileRuns;
     // As built, with live params and dt applied and painted parameters' maps added.
     Session m_session;
     const ReactionModel& m_model;
