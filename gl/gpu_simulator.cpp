@@ -350,20 +350,19 @@ void GpuSimulator::updateLiveUniforms() {
 }
 
 void GpuSimulator::setParams(const ParamValues& params) {
-    // Derived on a copy first: a refused change (InputError) leaves the run as it was.
     Session next = m_session;
     next.params = params;
-    const bool uniformsOnly = updateLiveConstants(m_k, next);
-    m_session = std::move(next);
-    if (uniformsOnly)
-        updateLiveUniforms();
-    else
-        buildPrograms();
+    applyLiveChange(std::move(next));
 }
 
 void GpuSimulator::setDt(float dt) {
     Session next = m_session;
     next.dt = dt;
+    applyLiveChange(std::move(next));
+}
+
+void GpuSimulator::applyLiveChange(Session next) {
+    // Derived before anything changes: a refused change (InputError) leaves the run as it was.
     const bool uniformsOnly = updateLiveConstants(m_k, next);
     m_session = std::move(next);
     if (uniformsOnly)

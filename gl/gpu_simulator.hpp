@@ -114,6 +114,8 @@ private:
     // coefficients) on one step program, and the semi-implicit weights.
     void setLiveUniforms(const Program& program) const;
     void updateLiveUniforms();
+    // Takes a session that differs from m_session in params or dt only.
+    void applyLiveChange(Session next);
     mutable int m_programBuilds = 0;
 };
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/bench_domains.hpp"
+#include "cli/bench_timing.hpp"
 #include "cli/commands.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/session_run.hpp"
@@ -39,24 +40,6 @@ struct BenchFlags {
 };
 
 using Clock = std::chrono::steady_clock;
-
-// Runs batches of `batch` steps until `seconds` have passed; returns steps/s.
-// `finish` must wait for the work to complete (glFinish on the GPU).
-template <typename Run, typename Finish>
-double measure(Run&& run, Finish&& finish, double seconds, int batch) {
-    run(batch); // warm-up: shader compilation, first-touch allocation
-    finish();
-    int steps = 0;
-    const auto start = Clock::now();
-    double elapsed = 0;
-    do {
-        run(batch);
-        finish();
-        steps += batch;
-        elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    } while (elapsed < seconds);
-    return steps / elapsed;
-}
 
 // McGraw's Table 2 set (e), measured beside operatorVariants' set (c): ranks 2
 // and 4 only, so its 5x5 kernel is centrally symmetric and the CPU sums it
@@ -217,10 +200,10 @@ nlohmann::json throughputRows(const Session& base, const BenchFlags& f, bool gpu
             std::fprintf(stderr, "bench: %dx%d gpu step...\n", n, n);
             gl::GpuSimulator gpu(s);
             gpu.setState(initial);
-            gpuStep = measure([&](int k) { gpu.run(k); }, [] { glFinish(); }, f.seconds, batch);
+            gpuStep = measureStepsPerSecond([&](int k) { gpu.run(k); }, [] { glFinish(); }, f.seconds, batch);
             std::fprintf(stderr, "bench: %dx%d gpu copy...\n", n, n);
             gl::CopyPass copy(n, n, int(s.reactionModel().chemicals().size()));
-            gpuCopy = measure([&](int k) { copy.run(k); }, [] { glFinish(); }, f.seconds, batch);
+            gpuCopy = measureStepsPerSecond([&](int k) { copy.run(k); }, [] { glFinish(); }, f.seconds, batch);
             row["gpu_step_iterations_per_s"] = gpuStep;
             row["gpu_step_cell_updates_per_s"] = gpuStep * cells;
             row["gpu_copy_iterations_per_s"] = gpuCopy;
@@ -230,7 +213,7 @@ nlohmann::json throughputRows(const Session& base, const BenchFlags& f, bool gpu
             std::fprintf(stderr, "bench: %dx%d cpu step...\n", n, n);
             CpuSimulator cpuSim(s);
             cpuSim.setState(initial);
-            cpu = measure([&](int k) { cpuSim.run(k); }, [] {}, f.seconds, batch);
+            cpu = measureStepsPerSecond([&](int k) { cpuSim.run(k); }, [] {}, f.seconds, batch);
             row["cpu_iterations_per_s"] = cpu;
             row["cpu_cell_updates_per_s"] = cpu * cells;
             if (gpuRows)
@@ -266,7 +249,7 @@ nlohmann::json operatorRows(const Session& base, const BenchFlags& f, bool gpuRo
                 std::fprintf(stderr, "bench: %dx%d gpu %s...\n", n, n, name.c_str());
                 gl::GpuSimulator sim(s);
                 sim.setState(initial);
-                gpu = measure([&](int k) { sim.run(k); }, [] { glFinish(); }, f.seconds, batch);
+                gpu = measureStepsPerSecond([&](int k) { sim.run(k); }, [] { glFinish(); }, f.seconds, batch);
                 gpuBase = gpuBase > 0 ? gpuBase : gpu;
                 row["gpu_iterations_per_s"] = gpu;
                 row["gpu_over_5_point"] = gpu / gpuBase;
@@ -275,7 +258,7 @@ nlohmann::json operatorRows(const Session& base, const BenchFlags& f, bool gpuRo
                 std::fprintf(stderr, "bench: %dx%d cpu %s...\n", n, n, name.c_str());
                 CpuSimulator sim(s);
                 sim.setState(initial);
-                cpu = measure([&](int k) { sim.run(k); }, [] {}, f.seconds, batch);
+                cpu = measureStepsPerSecond([&](int k) { sim.run(k); }, [] {}, f.seconds, batch);
                 cpuBase = cpuBase > 0 ? cpuBase : cpu;
                 row["cpu_iterations_per_s"] = cpu;
                 row["cpu_over_5_point"] = cpu / cpuBase;

@@ -1,6 +1,6 @@
 #include "cli/bench_domains.hpp"
+#include "cli/bench_timing.hpp"
 
-#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -17,27 +17,17 @@ namespace morphogen::cli {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Make = std::function<std::unique_ptr<Simulator>(const Session&)>;
 
 // Steps per second of run(batch), after a warm-up batch, for `seconds`.
 double stepsPerSecond(const std::function<void(int)>& run, bool gpu, double seconds, int batch) {
-    const auto finish = [gpu] {
-        if (gpu)
-            glFinish();
-    };
-    run(batch);
-    finish();
-    int steps = 0;
-    const auto start = Clock::now();
-    double elapsed = 0;
-    do {
-        run(batch);
-        finish();
-        steps += batch;
-        elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    } while (elapsed < seconds);
-    return steps / elapsed;
+    return measureStepsPerSecond(
+        run,
+        [gpu] {
+            if (gpu)
+                glFinish();
+        },
+        seconds, batch);
 }
 
 double sessionStepsPerSecond(const Session& s, const Make& make, bool gpu, double seconds) {

@@ -529,17 +529,19 @@ void CpuSimulator::pickKernels() {
 }
 
 void CpuSimulator::setParams(const ParamValues& params) {
-    // Derived on a copy first: a refused change (InputError) leaves the run as it was.
     Session next = m_session;
     next.params = params;
-    updateLiveConstants(m_k, next);
-    m_session = std::move(next);
-    pickKernels();
+    applyLiveChange(std::move(next));
 }
 
 void CpuSimulator::setDt(float dt) {
     Session next = m_session;
     next.dt = dt;
+    applyLiveChange(std::move(next));
+}
+
+void CpuSimulator::applyLiveChange(Session next) {
+    // Derived before anything changes: a refused change (InputError) leaves the run as it was.
     updateLiveConstants(m_k, next);
     m_session = std::move(next);
     pickKernels();

@@ -51,6 +51,8 @@ private:
     // own, tiles in parallel, while it fits in cache (cpu_tile_runs.cpp);
     // false where the one-pass row kernels must run instead.
     bool runTilesApart(int steps);
+    // Takes a session that differs from m_session in params or dt only.
+    void applyLiveChange(Session next);
 
     // runTilesApart: one simulator per tile (row-major from the bottom row),
     // made on first use and dropped whenever the constants change.
