@@ -20,9 +20,11 @@ class Atlas;
 //              wrap mode. This is the fast path and stays exactly as it was.
 //   TiledGrid  W x H cells split into columns x rows equal tiles, each
 //              periodic on its own: tiles exchange nothing (a parameter sweep
-//              batched into one simulation). The CPU walks each row as one
-//              column segment per tile, interior columns unit-stride; the GPU
-//              wraps inside the tile (TILES variant of glsl/step.frag).
+//              batched into one simulation). The CPU advances each tile a
+//              chunk of explicit steps on its own, tiles in parallel
+//              (cpu_tile_runs.cpp), and otherwise walks each row as one column
+//              segment per tile, interior columns unit-stride; the GPU wraps
+//              inside the tile (TILES variant of glsl/step.frag).
 //   Atlas      square tiles in one texture (Lo et al.); every texel's four
 //              neighbours come from a connectivity map (core/domain/atlas.hpp).
 //              Interior texels use +-1 / +-width, border texels the map;
