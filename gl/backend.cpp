@@ -1,5 +1,6 @@
 #include "gl/backend.hpp"
 
+#include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "gl/gl_checks.hpp"
@@ -7,14 +8,21 @@
 
 namespace morphogen::gl {
 
+namespace {
+
+const EnumName<BackendChoice> kBackends[] = {
+    {BackendChoice::Auto, "auto"}, {BackendChoice::Gpu, "gpu"}, {BackendChoice::Cpu, "cpu"}};
+
+const EnumAlias<BackendChoice> kBackendAliases[] = {{"opengl", BackendChoice::Gpu},
+                                                    {"gl", BackendChoice::Gpu}};
+
+} // namespace
+
 BackendChoice parseBackendChoice(const std::string& text) {
-    if (text == "auto")
-        return BackendChoice::Auto;
-    if (text == "gpu")
-        return BackendChoice::Gpu;
-    if (text == "cpu")
-        return BackendChoice::Cpu;
-    throw InputError("--backend '" + text + "' is unknown (accepted: auto, gpu, cpu)");
+    if (const std::optional<BackendChoice> choice = valueNamed(kBackends, kBackendAliases, text))
+        return *choice;
+    throw InputError("--backend '" + text + "' is unknown (accepted: " + nameList(kBackends) + ")" +
+                     didYouMean(text, splitNameList(nameList(kBackends))));
 }
 
 std::optional<ContextKind> parseContextFlag(const std::string& text) {
@@ -22,7 +30,8 @@ std::optional<ContextKind> parseContextFlag(const std::string& text) {
         return std::nullopt;
     auto kind = parseContextKind(text);
     if (!kind)
-        throw InputError("--context '" + text + "' is unknown (accepted: egl, osmesa, glfw)");
+        throw InputError("--context '" + text + "' is unknown (accepted: " + contextKindNames() +
+                         ")" + didYouMean(text, splitNameList(contextKindNames())));
     return kind;
 }
 

@@ -6,32 +6,33 @@
 
 #include <glad/gl.h>
 
+#include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "gl/gl_checks.hpp"
 #include "gl/glfw_context.hpp"
 
 namespace morphogen::gl {
 
+namespace {
+
+const EnumName<ContextKind> kContextKinds[] = {
+    {ContextKind::Egl, "egl"}, {ContextKind::OsMesa, "osmesa"}, {ContextKind::Glfw, "glfw"}};
+
+const EnumAlias<ContextKind> kContextAliases[] = {{"os-mesa", ContextKind::OsMesa},
+                                                  {"mesa", ContextKind::OsMesa}};
+
+} // namespace
+
 std::string toString(ContextKind kind) {
-    switch (kind) {
-    case ContextKind::Egl:
-        return "egl";
-    case ContextKind::OsMesa:
-        return "osmesa";
-    case ContextKind::Glfw:
-        return "glfw";
-    }
-    return "egl";
+    return nameOf(kContextKinds, kind);
 }
 
 std::optional<ContextKind> parseContextKind(const std::string& text) {
-    if (text == "egl")
-        return ContextKind::Egl;
-    if (text == "osmesa")
-        return ContextKind::OsMesa;
-    if (text == "glfw")
-        return ContextKind::Glfw;
-    return std::nullopt;
+    return valueNamed(kContextKinds, kContextAliases, text);
+}
+
+std::string contextKindNames() {
+    return nameList(kContextKinds);
 }
 
 std::string Context::renderer() const {
@@ -75,8 +76,10 @@ std::unique_ptr<Context> createHeadlessContext(std::optional<ContextKind> reques
         if (const char* env = std::getenv(kContextEnvVar); env && *env) {
             requested = parseContextKind(env);
             if (!requested)
-                throw std::runtime_error(std::string(kContextEnvVar) + "='" + env +
-                                         "' is not a context kind (accepted: egl, osmesa, glfw)");
+                throw std::runtime_error(
+                    std::string(kContextEnvVar) + "='" + env +
+                    "' is not a context kind (accepted: " + contextKindNames() + ")" +
+                    didYouMean(env, splitNameList(contextKindNames())));
         }
     }
     std::optional<DeviceRequest> device;

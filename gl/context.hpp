@@ -17,6 +17,7 @@ enum class ContextKind {
 std::string toString(ContextKind kind);
 // "egl", "osmesa", "glfw"; nullopt for anything else.
 std::optional<ContextKind> parseContextKind(const std::string& text);
+std::string contextKindNames(); // "egl, osmesa, glfw"
 
 // A current OpenGL 3.3 core context with the GL entry points loaded.
 class Context {

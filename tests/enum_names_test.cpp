@@ -16,7 +16,11 @@ TEST(EnumNames, EdgeModesRoundTrip) {
         EXPECT_EQ(parseEdgeMode(toString(m)), m);
     EXPECT_EQ(toString(EdgeMode::Clamped), "clamped");
     EXPECT_EQ(edgeModeNames(), "periodic, clamped");
-    EXPECT_FALSE(parseEdgeMode("Periodic"));
+    // Case is not a different name; aliases read as the canonical value.
+    EXPECT_EQ(parseEdgeMode("Periodic"), EdgeMode::Periodic);
+    EXPECT_EQ(parseEdgeMode("wrap"), EdgeMode::Periodic);
+    EXPECT_EQ(parseEdgeMode("zero_flux"), EdgeMode::Clamped);
+    EXPECT_FALSE(parseEdgeMode("periodical"));
     EXPECT_FALSE(parseEdgeMode(""));
 }
 
@@ -25,7 +29,10 @@ TEST(EnumNames, IntegratorsRoundTrip) {
         EXPECT_EQ(parseIntegrator(toString(i)), i);
     EXPECT_EQ(toString(Integrator::SemiImplicit), "semi_implicit");
     EXPECT_EQ(integratorNames(), "explicit_euler, semi_implicit");
-    EXPECT_FALSE(parseIntegrator("semi-implicit"));
+    // '-' and '_' are one separator; the alias is written back canonically.
+    EXPECT_EQ(parseIntegrator("semi-implicit"), Integrator::SemiImplicit);
+    EXPECT_EQ(toString(*parseIntegrator("euler")), "explicit_euler");
+    EXPECT_FALSE(parseIntegrator("semi implicit"));
 }
 
 TEST(EnumNames, StencilsRoundTrip) {
@@ -35,6 +42,7 @@ TEST(EnumNames, StencilsRoundTrip) {
     EXPECT_EQ(stencilNames(), "5-point, 9-point");
     // The CLI's short "5" is its own alias, not a session spelling.
     EXPECT_FALSE(parseStencil("5"));
+    EXPECT_EQ(parseStencil("nine_point"), Stencil::NinePoint);
 }
 
 TEST(EnumNames, JoinNamesListsInOrder) {

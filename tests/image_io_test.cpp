@@ -6,9 +6,9 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
-#include "core/output/colormap.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/output/colormap.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;
@@ -105,9 +105,12 @@ TEST(ImageIo, FailedWriteLeavesNoFile) {
 }
 
 TEST(Colormap, NamesAreCheckedAndFlatFieldsStayFlat) {
-    EXPECT_THROW(checkColormapName("rainbow"), InputError);
+    EXPECT_THROW(canonicalColormapName("rainbow"), InputError);
     for (const std::string& name : colormapNames())
-        EXPECT_NO_THROW(checkColormapName(name));
+        EXPECT_EQ(canonicalColormapName(name), name);
+    EXPECT_EQ(canonicalColormapName("gray"), "grey");
+    EXPECT_EQ(canonicalColormapName("Two-Color"), "two-colour");
+    EXPECT_EQ(canonicalColormapName("VIRIDIS"), "viridis");
     State flat(4, 4, 1);
     for (std::size_t i = 0; i < flat.cellCount(); ++i)
         flat.plane(0)[i] = 0.3f + (i % 2) * 1e-7f; // round-off, not a pattern

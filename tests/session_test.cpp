@@ -253,3 +253,30 @@ TEST(Session, BrokenModelChangingStagesAreNamed) {
                   .find("'stages[0].model' cannot be set on the first stage"),
               std::string::npos);
 }
+
+// Common spellings in a session file read as the canonical names, which are
+// what the session writes back; near misses name the intended key or value.
+TEST(Session, AliasesAreWrittenCanonicallyAndTyposSuggested) {
+    const Session s =
+        sessionFromJson(json::parse(R"({"model": "Gray-Scott", "size": 16, "edges": "wrap",
+                        "integrator": "semi-implicit",
+                        "init": {"type": "center_square"}})"),
+                        "aliases.json");
+    const json written = sessionToJson(s);
+    EXPECT_EQ(written["model"], "gray_scott");
+    EXPECT_EQ(written["edges"], "periodic");
+    EXPECT_EQ(written["integrator"], "semi_implicit");
+    EXPECT_EQ(written["init"]["type"], "centre_square");
+
+    EXPECT_NE(errorFor(R"({"model": "gray_scot"})").find("(did you mean 'gray_scott'?)"),
+              std::string::npos);
+    EXPECT_NE(
+        errorFor(R"({"model": "gray_scott", "edgse": "periodic"})").find("(did you mean 'edges'?)"),
+        std::string::npos);
+    EXPECT_NE(
+        errorFor(R"({"model": "gray_scott", "params": {"Dw": 0.1}})").find("(did you mean 'Du'?)"),
+        std::string::npos);
+    const std::string far = errorFor(R"({"model": "gray_scott", "edges": "spherical"})");
+    EXPECT_NE(far.find("accepted: periodic, clamped"), std::string::npos);
+    EXPECT_EQ(far.find("did you mean"), std::string::npos);
+}

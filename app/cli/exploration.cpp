@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/base/names.hpp"
 
 namespace morphogen::cli {
 
@@ -22,7 +23,8 @@ SweepAxis parseAxis(const std::string& flag, const std::string& text, const Reac
     const ParamSpec* spec = model.param(name);
     if (!spec)
         throw InputError(flag + " '" + text + "': '" + name + "' is not a parameter of " +
-                         model.name());
+                         model.name() + " (parameters: " + model.paramNames() + ")" +
+                         didYouMean(name, splitNameList(model.paramNames())));
     if (axis.min < spec->min || axis.max > spec->max || !(axis.min < axis.max))
         throw InputError(flag + " '" + text + "': need MIN < MAX within " + name + "'s range [" +
                          std::to_string(spec->min) + ", " + std::to_string(spec->max) + "]");
@@ -44,7 +46,8 @@ Session explorationBase(const std::string& modelName, const std::string& preset,
     }
     const ReactionModel* model = findModel(modelName);
     if (!model)
-        throw InputError("--model '" + modelName + "' is unknown (known: " + modelNames() + ")");
+        throw InputError("--model '" + modelName + "' is unknown (known: " + modelNames() + ")" +
+                         didYouMean(modelName, splitNameList(modelNames())));
     Session s;
     s.name = name;
     s.model = model->name();

@@ -13,9 +13,10 @@
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/names.hpp"
 #include "core/io/image_io.hpp"
-#include "core/sim/runner.hpp"
 #include "core/session/session.hpp"
+#include "core/sim/runner.hpp"
 #include "gl/backend.hpp"
 
 namespace morphogen::cli {
@@ -94,14 +95,21 @@ std::vector<Session> selectPresets(const std::string& only) {
         if (first == std::string::npos)
             continue;
         item = item.substr(first, item.find_last_not_of(" \t") - first + 1);
-        const bool known = std::any_of(presets.begin(), presets.end(),
-                                       [&](const Session& s) { return s.name == item; });
-        (known ? wanted : unknown).push_back(item);
+        const auto known = std::find_if(presets.begin(), presets.end(), [&](const Session& s) {
+            return sameSpelling(s.name, item);
+        });
+        if (known != presets.end())
+            wanted.push_back(known->name);
+        else
+            unknown.push_back(item);
     }
     if (!unknown.empty()) {
+        std::vector<std::string> presetNames;
+        for (const Session& s : presets)
+            presetNames.push_back(s.name);
         std::string names;
         for (const std::string& u : unknown)
-            names += (names.empty() ? "'" : ", '") + u + "'";
+            names += (names.empty() ? "'" : ", '") + u + "'" + didYouMean(u, presetNames);
         throw InputError("--only: unknown preset " + names +
                          " (`morphogen presets` lists the built-in names)");
     }

@@ -13,11 +13,11 @@
 #include "cli/plot_frame.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
-#include "core/output/colormap.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
-#include "core/sim/runner.hpp"
+#include "core/output/colormap.hpp"
 #include "core/session/session.hpp"
+#include "core/sim/runner.hpp"
 #include "gl/backend.hpp"
 
 namespace morphogen::cli {
@@ -88,7 +88,7 @@ MapPlan planMap(const MapFlags& f) {
     }
     if (!f.colormap.empty())
         s.colormap.name = f.colormap;
-    checkColormapName(s.colormap.name);
+    s.colormap.name = canonicalColormapName(s.colormap.name);
     s.paramMaps[plan.x.param] = {ParamMapSpec::Field::LinearX, plan.x.min, plan.x.max};
     s.paramMaps[plan.y.param] = {ParamMapSpec::Field::LinearY, plan.y.min, plan.y.max};
     validateSession(s, "map");

@@ -9,13 +9,13 @@
 #include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
-#include "core/output/colormap.hpp"
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
 #include "core/models/initial_condition.hpp"
-#include "core/sim/runner.hpp"
+#include "core/output/colormap.hpp"
 #include "core/session/session.hpp"
+#include "core/sim/runner.hpp"
 #include "gl/backend.hpp"
 
 namespace morphogen::cli {
@@ -54,7 +54,8 @@ E parseFlag(const std::string& flag, const std::string& text,
             std::optional<E> (*parse)(std::string_view), const std::string& accepted) {
     const std::optional<E> value = parse(text);
     if (!value)
-        throw InputError(flag + " '" + text + "' is unknown (accepted: " + accepted + ")");
+        throw InputError(flag + " '" + text + "' is unknown (accepted: " + accepted + ")" +
+                         didYouMean(text, splitNameList(accepted)));
     return *value;
 }
 
@@ -164,7 +165,7 @@ Session buildSession(const RenderFlags& f) {
                              "' is not LOW:HIGH with 0 <= LOW < HIGH <= 1 (e.g. 0.3:0.5)");
         s.colormap.levels = {low, high};
     }
-    checkColormapName(s.colormap.name);
+    s.colormap.name = canonicalColormapName(s.colormap.name);
     colormapChemical(s.colormap, s.outputModel());
     validateSession(s, f.sessionFile.empty() ? "preset " + s.name : f.sessionFile);
     return s;

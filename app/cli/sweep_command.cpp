@@ -19,10 +19,10 @@
 #include "cli/plot_frame.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
-#include "core/output/colormap.hpp"
+#include "core/analysis/pattern_classifier.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
-#include "core/analysis/pattern_classifier.hpp"
+#include "core/output/colormap.hpp"
 #include "core/sim/sweep.hpp"
 #include "gl/backend.hpp"
 
@@ -193,7 +193,7 @@ SweepSpec sweepSpec(const SweepFlags& f) {
         base.steps = f.steps;
     if (f.seed >= 0)
         base.seed = std::uint64_t(f.seed);
-    checkColormapName(base.colormap.name);
+    base.colormap.name = canonicalColormapName(base.colormap.name);
 
     // Stability at the corners covers the grid: a rate grows monotonically
     // along an axis. The smallest dt found applies to every tile.

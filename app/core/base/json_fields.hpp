@@ -8,11 +8,13 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/names.hpp"
 
 namespace morphogen {
 
@@ -51,8 +53,10 @@ public:
             for (const char* k : known)
                 ok = ok || it.key() == k;
             if (!ok)
-                fail("unknown field '" + path(it.key()) + "'",
-                     "(accepted: " + joinNames(known) + ")");
+                fail(
+                    "unknown field '" + path(it.key()) + "'",
+                    "(accepted: " + joinNames(known) + ")" +
+                        didYouMean(it.key(), std::vector<std::string>(known.begin(), known.end())));
         }
     }
 
@@ -75,7 +79,8 @@ public:
         const std::string name = string(key, "");
         const std::optional<E> value = parse(name);
         if (!value)
-            failField(key, "is '" + name + "', accepted: " + accepted);
+            failField(key, "is '" + name + "', accepted: " + accepted +
+                               didYouMean(name, splitNameList(accepted)));
         return *value;
     }
 

@@ -9,6 +9,9 @@ namespace {
 const EnumName<EdgeMode> kEdgeModes[] = {{EdgeMode::Periodic, "periodic"},
                                          {EdgeMode::Clamped, "clamped"}};
 
+const EnumAlias<EdgeMode> kEdgeModeAliases[] = {
+    {"wrap", EdgeMode::Periodic}, {"clamp", EdgeMode::Clamped}, {"zero-flux", EdgeMode::Clamped}};
+
 } // namespace
 
 std::string toString(EdgeMode mode) {
@@ -16,7 +19,7 @@ std::string toString(EdgeMode mode) {
 }
 
 std::optional<EdgeMode> parseEdgeMode(std::string_view name) {
-    return valueNamed(kEdgeModes, name);
+    return valueNamed(kEdgeModes, kEdgeModeAliases, name);
 }
 
 std::string edgeModeNames() {

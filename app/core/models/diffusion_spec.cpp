@@ -19,6 +19,12 @@ const EnumName<DiffusionType> kDiffusionTypes[] = {{DiffusionType::Isotropic, "i
                                                    {DiffusionType::Anisotropic, "anisotropic"},
                                                    {DiffusionType::Generalized, "generalized"}};
 
+const EnumAlias<Stencil> kStencilAliases[] = {{"five-point", Stencil::FivePoint},
+                                              {"nine-point", Stencil::NinePoint}};
+
+const EnumAlias<DiffusionType> kDiffusionTypeAliases[] = {
+    {"generalised", DiffusionType::Generalized}};
+
 const EnumName<OrientationField::Type> kFieldTypes[] = {
     {OrientationField::Type::Constant, "constant"},
     {OrientationField::Type::Radial, "radial"},
@@ -29,7 +35,7 @@ const EnumName<OrientationField::Type> kFieldTypes[] = {
     {OrientationField::Type::ImageGradient, "image_gradient"}};
 
 std::optional<DiffusionType> parseDiffusionType(std::string_view name) {
-    return valueNamed(kDiffusionTypes, name);
+    return valueNamed(kDiffusionTypes, kDiffusionTypeAliases, name);
 }
 
 std::optional<OrientationField::Type> parseFieldType(std::string_view name) {
@@ -39,7 +45,8 @@ std::optional<OrientationField::Type> parseFieldType(std::string_view name) {
 void checkChemical(const FieldReader& reader, const std::string& key, const ReactionModel& model) {
     if (model.chemicalIndex(key) < 0)
         reader.failField(key, "is not a chemical of model '" + model.name() +
-                                  "' (chemicals: " + model.chemicalNames() + ")");
+                                  "' (chemicals: " + model.chemicalNames() + ")" +
+                                  didYouMean(key, splitNameList(model.chemicalNames())));
 }
 
 OrientationField fieldFromJson(const json& j, const std::string& source, const std::string& path) {
@@ -90,7 +97,7 @@ std::string toString(Stencil stencil) {
 }
 
 std::optional<Stencil> parseStencil(std::string_view name) {
-    return valueNamed(kStencils, name);
+    return valueNamed(kStencils, kStencilAliases, name);
 }
 
 std::string stencilNames() {

@@ -2,29 +2,43 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "core/base/enum_names.hpp"
 #include "core/base/json_fields.hpp"
 #include "core/base/random.hpp"
 #include "core/models/reaction_model.hpp"
 
 namespace morphogen {
 
+namespace {
+
+const EnumName<InitialCondition::Type> kTypes[] = {
+    {InitialCondition::Type::Noise, "noise"},
+    {InitialCondition::Type::CentreSquare, "centre_square"},
+    {InitialCondition::Type::SeedSpots, "seed_spots"},
+    {InitialCondition::Type::JitteredGrid, "jittered_grid"}};
+
+const EnumAlias<InitialCondition::Type> kTypeAliases[] = {
+    {"center_square", InitialCondition::Type::CentreSquare},
+    {"square", InitialCondition::Type::CentreSquare},
+    {"spots", InitialCondition::Type::SeedSpots},
+    {"seeds", InitialCondition::Type::SeedSpots},
+    {"grid", InitialCondition::Type::JitteredGrid}};
+
+std::optional<InitialCondition::Type> parseType(std::string_view name) {
+    return valueNamed(kTypes, kTypeAliases, name);
+}
+
+} // namespace
+
 std::string toString(InitialCondition::Type type) {
-    switch (type) {
-    case InitialCondition::Type::Noise:
-        return "noise";
-    case InitialCondition::Type::CentreSquare:
-        return "centre_square";
-    case InitialCondition::Type::SeedSpots:
-        return "seed_spots";
-    case InitialCondition::Type::JitteredGrid:
-        return "jittered_grid";
-    }
-    return "noise";
+    return nameOf(kTypes, type);
 }
 
 namespace {
@@ -49,7 +63,8 @@ std::map<std::string, float> chemicalValues(const FieldReader& parent, const std
         if (model.chemicalIndex(it.key()) < 0)
             reader.fail("field '" + reader.path(it.key()) + "'",
                         "is not a chemical of model '" + model.name() +
-                            "' (chemicals: " + model.chemicalNames() + ")");
+                            "' (chemicals: " + model.chemicalNames() + ")" +
+                            didYouMean(it.key(), splitNameList(model.chemicalNames())));
         values[it.key()] = float(reader.numberValue(*it, it.key(), -1e6, 1e6));
     }
     return values;
@@ -63,19 +78,7 @@ InitialCondition initialConditionFromJson(const nlohmann::json& j, const std::st
     FieldReader reader(j, source, path);
     reader.rejectUnknown(
         {"type", "base", "noise", "inside", "fraction", "count", "radius", "spacing", "jitter"});
-    const std::string type = reader.string("type", toString(init.type));
-    if (type == "noise")
-        init.type = InitialCondition::Type::Noise;
-    else if (type == "centre_square")
-        init.type = InitialCondition::Type::CentreSquare;
-    else if (type == "seed_spots")
-        init.type = InitialCondition::Type::SeedSpots;
-    else if (type == "jittered_grid")
-        init.type = InitialCondition::Type::JitteredGrid;
-    else
-        reader.failField("type", "is '" + type +
-                                     "', accepted: noise, centre_square, seed_spots, "
-                                     "jittered_grid");
+    init.type = reader.choice("type", init.type, parseType, nameList(kTypes));
     if (reader.find("base"))
         init.base = chemicalValues(reader, "base", model);
     if (reader.find("noise"))

@@ -2,6 +2,7 @@
 
 #include <tuple>
 
+#include "core/base/names.hpp"
 #include "core/models/builtin_models.hpp"
 
 namespace morphogen {
@@ -66,7 +67,7 @@ std::vector<const ReactionModel*> allModels() {
 
 const ReactionModel* findModel(const std::string& name) {
     for (const ReactionModel* m : allModels())
-        if (m->name() == name)
+        if (sameSpelling(m->name(), name))
             return m;
     return nullptr;
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/base/names.hpp"
 
 namespace morphogen {
 
@@ -143,7 +144,7 @@ TensorSequence parseTensorSequence(const std::string& text) {
         const int index = TensorSequence::indexOf(canonicalName(name));
         if (index < 0)
             throw InputError("tensor sequence '" + text + "': unknown component '" + name + "'; " +
-                             accepted);
+                             accepted + didYouMean(name, splitNameList(tensorComponentNames())));
         char* end = nullptr;
         const double v = std::strtod(value.c_str(), &end);
         if (value.empty() || *end != '\0' || !std::isfinite(v))

@@ -26,6 +26,12 @@ const EnumName<Palette> kPalettes[] = {
     {Palette::Grey, "grey"},   {Palette::TwoColour, "two-colour"}, {Palette::Viridis, "viridis"},
     {Palette::Magma, "magma"}, {Palette::Inferno, "inferno"},      {Palette::Coolwarm, "coolwarm"}};
 
+const EnumAlias<Palette> kPaletteAliases[] = {{"gray", Palette::Grey},
+                                              {"two-color", Palette::TwoColour},
+                                              {"twocolour", Palette::TwoColour},
+                                              {"twocolor", Palette::TwoColour},
+                                              {"cool-warm", Palette::Coolwarm}};
+
 // Perceptual palettes as evenly spaced anchors (matplotlib's viridis, magma,
 // inferno; a cool-warm diverging map), interpolated piecewise linearly.
 const std::vector<Rgb>& anchors(Palette palette) {
@@ -56,10 +62,10 @@ const std::vector<Rgb>& anchors(Palette palette) {
 
 // Throws InputError naming the accepted maps.
 Palette parsePalette(const std::string& name) {
-    const std::optional<Palette> palette = valueNamed(kPalettes, name);
+    const std::optional<Palette> palette = valueNamed(kPalettes, kPaletteAliases, name);
     if (!palette)
         throw InputError("colour map '" + name + "' is unknown (accepted: " + nameList(kPalettes) +
-                         ")");
+                         ")" + didYouMean(name, splitNameList(nameList(kPalettes))));
     return *palette;
 }
 
@@ -85,8 +91,8 @@ const std::vector<std::string>& colormapNames() {
     return names;
 }
 
-void checkColormapName(const std::string& name) {
-    parsePalette(name);
+std::string canonicalColormapName(const std::string& name) {
+    return nameOf(kPalettes, parsePalette(name));
 }
 
 std::vector<Rgb> colormapAnchors(const ColorMapSpec& spec) {
@@ -104,7 +110,8 @@ int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model) {
     const int index = model.chemicalIndex(spec.chemical);
     if (index < 0)
         throw InputError("colour map chemical '" + spec.chemical + "' is not a chemical of " +
-                         model.name());
+                         model.name() + " (chemicals: " + model.chemicalNames() + ")" +
+                         didYouMean(spec.chemical, splitNameList(model.chemicalNames())));
     return index;
 }
 

@@ -4,16 +4,17 @@
 #include <string>
 #include <vector>
 
-#include "core/session/session.hpp"
 #include "core/base/state.hpp"
+#include "core/session/session.hpp"
 
 namespace morphogen {
 
 // Colour map names accepted by --colormap and "colormap.name".
 const std::vector<std::string>& colormapNames();
 
-// Throws InputError naming the accepted maps.
-void checkColormapName(const std::string& name);
+// The table's spelling of a map ("grey" for "gray"); throws InputError naming
+// the accepted maps.
+std::string canonicalColormapName(const std::string& name);
 
 // The chemical the colour map shows: spec.chemical, or the model's display chemical.
 int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model);

@@ -67,7 +67,9 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
             model = findModel(stage.model);
             if (!model)
                 reader.failField("model", "is '" + stage.model +
-                                              "', not a known model (known: " + modelNames() + ")");
+                                              "', not a known model (known: " + modelNames() + ")" +
+                                              didYouMean(stage.model, splitNameList(modelNames())));
+            stage.model = model->name();
             if (i == 0)
                 reader.failField("model", "cannot be set on the first stage: it runs the "
                                           "session's model ('" +
@@ -86,8 +88,10 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
             for (auto it = params->begin(); it != params->end(); ++it) {
                 const ParamSpec* spec = model->param(it.key());
                 if (!spec)
-                    p.failField(it.key(), "is not a parameter of model '" + model->name() +
-                                              "' (parameters: " + model->paramNames() + ")");
+                    p.failField(it.key(),
+                                "is not a parameter of model '" + model->name() +
+                                    "' (parameters: " + model->paramNames() + ")" +
+                                    didYouMean(it.key(), splitNameList(model->paramNames())));
                 stage.params[it.key()] = float(p.numberValue(*it, it.key(), spec->min, spec->max));
             }
         }
@@ -97,13 +101,14 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
             FreezeRule rule;
             rule.chemical = f.string("chemical", "");
             if (previous->chemicalIndex(rule.chemical) < 0)
-                f.failField("chemical",
-                            "is '" + rule.chemical + "', not a chemical of model '" +
-                                previous->name() +
-                                (previous != model ? "' (the previous stage's model, whose "
-                                                     "result the rule reads; chemicals: "
-                                                   : "' (chemicals: ") +
-                                previous->chemicalNames() + ")");
+                f.failField(
+                    "chemical",
+                    "is '" + rule.chemical + "', not a chemical of model '" + previous->name() +
+                        (previous != model ? "' (the previous stage's model, whose "
+                                             "result the rule reads; chemicals: "
+                                           : "' (chemicals: ") +
+                        previous->chemicalNames() + ")" +
+                        didYouMean(rule.chemical, splitNameList(previous->chemicalNames())));
             rule.min = float(f.number("min", -1e30, -1e30, 1e30));
             rule.max = float(f.number("max", 1e30, -1e30, 1e30));
             if (rule.min > rule.max)
@@ -114,8 +119,10 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
             FieldReader r(*reset, source, reader.path("reset"));
             for (auto it = reset->begin(); it != reset->end(); ++it) {
                 if (model->chemicalIndex(it.key()) < 0)
-                    r.failField(it.key(), "is not a chemical of model '" + model->name() +
-                                              "' (chemicals: " + model->chemicalNames() + ")");
+                    r.failField(it.key(),
+                                "is not a chemical of model '" + model->name() +
+                                    "' (chemicals: " + model->chemicalNames() + ")" +
+                                    didYouMean(it.key(), splitNameList(model->chemicalNames())));
                 stage.reset[it.key()] = float(r.numberValue(*it, it.key(), -1e6, 1e6));
             }
         }

@@ -6,10 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/io/image_io.hpp"
 #include "core/base/enum_names.hpp"
 #include "core/base/json_fields.hpp"
 #include "core/base/random.hpp"
+#include "core/io/image_io.hpp"
 #include "core/models/reaction_model.hpp"
 #include "core/session/session.hpp"
 
@@ -19,10 +19,11 @@ using nlohmann::json;
 
 namespace {
 
-const EnumName<ParamMapSpec::Field> kFields[] = {
-    {ParamMapSpec::Field::LinearX, "linear_x"}, {ParamMapSpec::Field::LinearY, "linear_y"},
-    {ParamMapSpec::Field::Radial, "radial"},    {ParamMapSpec::Field::Noise, "noise"},
-    {ParamMapSpec::Field::Image, "image"}};
+const EnumName<ParamMapSpec::Field> kFields[] = {{ParamMapSpec::Field::LinearX, "linear_x"},
+                                                 {ParamMapSpec::Field::LinearY, "linear_y"},
+                                                 {ParamMapSpec::Field::Radial, "radial"},
+                                                 {ParamMapSpec::Field::Noise, "noise"},
+                                                 {ParamMapSpec::Field::Image, "image"}};
 
 std::optional<ParamMapSpec::Field> parseField(std::string_view name) {
     return valueNamed(kFields, name);
@@ -101,7 +102,9 @@ std::map<std::string, ParamMapSpec> paramMapsFromJson(const json& j, const std::
     for (auto it = j.begin(); it != j.end(); ++it) {
         const ParamSpec* param = model.param(it.key());
         if (!param)
-            maps.failField(it.key(), "is not a parameter of model '" + model.name() + "'");
+            maps.failField(it.key(), "is not a parameter of model '" + model.name() +
+                                         "' (parameters: " + model.paramNames() + ")" +
+                                         didYouMean(it.key(), splitNameList(model.paramNames())));
         FieldReader reader(*it, source, maps.path(it.key()));
         reader.rejectUnknown({"field", "range", "scale", "centre", "image"});
         ParamMapSpec spec;

@@ -24,6 +24,11 @@ namespace {
 const EnumName<Integrator> kIntegrators[] = {{Integrator::ExplicitEuler, "explicit_euler"},
                                              {Integrator::SemiImplicit, "semi_implicit"}};
 
+const EnumAlias<Integrator> kIntegratorAliases[] = {{"euler", Integrator::ExplicitEuler},
+                                                    {"explicit", Integrator::ExplicitEuler},
+                                                    {"semiimplicit", Integrator::SemiImplicit},
+                                                    {"imex", Integrator::SemiImplicit}};
+
 } // namespace
 
 std::string toString(Integrator integrator) {
@@ -31,7 +36,7 @@ std::string toString(Integrator integrator) {
 }
 
 std::optional<Integrator> parseIntegrator(std::string_view name) {
-    return valueNamed(kIntegrators, name);
+    return valueNamed(kIntegrators, kIntegratorAliases, name);
 }
 
 std::string integratorNames() {
@@ -127,7 +132,8 @@ ParamValues paramsFromJson(const FieldReader& top, const ReactionModel& model) {
         if (!spec)
             reader.fail("field 'params." + it.key() + "'",
                         "is not a parameter of model '" + model.name() +
-                            "' (parameters: " + model.paramNames() + ")");
+                            "' (parameters: " + model.paramNames() + ")" +
+                            didYouMean(it.key(), splitNameList(model.paramNames())));
         params[it.key()] = float(reader.numberValue(*it, it.key(), spec->min, spec->max));
     }
     return params;
@@ -217,9 +223,10 @@ ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const Reac
     spec.name = reader.string("name", spec.name);
     spec.chemical = reader.string("chemical", "");
     if (!spec.chemical.empty() && shown.chemicalIndex(spec.chemical) < 0)
-        reader.failField("chemical", "is '" + spec.chemical + "', not a chemical of model '" +
-                                         shown.name() + "'" +
-                                         (lastStageModel ? " (the last stage's model)" : ""));
+        reader.failField("chemical",
+                         "is '" + spec.chemical + "', not a chemical of model '" + shown.name() +
+                             "'" + (lastStageModel ? " (the last stage's model)" : "") +
+                             didYouMean(spec.chemical, splitNameList(shown.chemicalNames())));
     spec.low = colour(reader, "low", spec.low);
     spec.high = colour(reader, "high", spec.high);
     if (const json* levels = reader.find("levels")) {
@@ -247,8 +254,9 @@ Session sessionFromJson(const json& root, const std::string& source) {
     s.model = top.string("model", s.model);
     const ReactionModel* model = findModel(s.model);
     if (!model)
-        top.failField("model",
-                      "is '" + s.model + "', not a known model (known: " + modelNames() + ")");
+        top.failField("model", "is '" + s.model + "', not a known model (known: " + modelNames() +
+                                   ")" + didYouMean(s.model, splitNameList(modelNames())));
+    s.model = model->name();
     s.params = paramsFromJson(top, *model);
     readSize(top, s);
     s.edges = top.choice("edges", s.edges, parseEdgeMode, edgeModeNames());
@@ -381,14 +389,14 @@ std::vector<Session> allPresets() {
 }
 
 Session loadPreset(const std::string& name) {
-    std::string names;
+    std::vector<std::string> names;
     for (Session& s : allPresets()) {
-        if (s.name == name)
+        if (sameSpelling(s.name, name))
             return s;
-        names += (names.empty() ? "" : ", ") + s.name;
+        names.push_back(s.name);
     }
-    throw InputError("unknown preset '" + name + "' (known: " + names +
-                     "; `morphogen presets` lists them)");
+    throw InputError("unknown preset '" + name + "' (known: " + joinNames(names) +
+                     "; `morphogen presets` lists them)" + didYouMean(name, names));
 }
 
 void applyParamOverride(Session& session, const std::string& assignment) {
@@ -402,7 +410,8 @@ void applyParamOverride(Session& session, const std::string& assignment) {
     const ParamSpec* spec = model.param(name);
     if (!spec)
         throw InputError("--param '" + assignment + "': '" + name + "' is not a parameter of " +
-                         model.name() + " (parameters: " + model.paramNames() + ")");
+                         model.name() + " (parameters: " + model.paramNames() + ")" +
+                         didYouMean(name, splitNameList(model.paramNames())));
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0' || !std::isfinite(v))
@@ -440,7 +449,8 @@ void applySteps(Session& session, int steps, const std::string& flag) {
 void validateSession(const Session& s, const std::string& source) {
     const ReactionModel* model = findModel(s.model);
     if (!model)
-        throw InputError(source + ": unknown model '" + s.model + "'");
+        throw InputError(source + ": unknown model '" + s.model + "' (known: " + modelNames() +
+                         ")" + didYouMean(s.model, splitNameList(modelNames())));
     for (const ParamSpec& p : model->params()) {
         auto it = s.params.find(p.name);
         if (it == s.params.end())
@@ -458,7 +468,8 @@ void validateSession(const Session& s, const std::string& source) {
             const ParamSpec* p = m.param(name);
             if (!p)
                 throw InputError(source + ": stages[" + std::to_string(i) + "].params." + name +
-                                 " is not a parameter of model '" + m.name() + "'");
+                                 " is not a parameter of model '" + m.name() + "'" +
+                                 didYouMean(name, splitNameList(m.paramNames())));
             if (!std::isfinite(value) || value < p->min || value > p->max) {
                 std::ostringstream os;
                 os << source << ": stages[" << i << "].params." << name << " = " << value
@@ -476,10 +487,9 @@ void validateSession(const Session& s, const std::string& source) {
     if (s.steps < 0)
         throw InputError(source + ": steps must be >= 0");
     // A size override must keep a batched sweep's tiles whole.
-    if (s.tiles.active() &&
-        (s.width % s.tiles.columns != 0 || s.height % s.tiles.rows != 0 ||
-         s.width / s.tiles.columns < 4 || s.height / s.tiles.rows < 4 ||
-         s.edges != EdgeMode::Periodic))
+    if (s.tiles.active() && (s.width % s.tiles.columns != 0 || s.height % s.tiles.rows != 0 ||
+                             s.width / s.tiles.columns < 4 || s.height / s.tiles.rows < 4 ||
+                             s.edges != EdgeMode::Periodic))
         throw InputError(source + ": tiles grid [" + std::to_string(s.tiles.columns) + ", " +
                          std::to_string(s.tiles.rows) + "] must split the " +
                          std::to_string(s.width) + " x " + std::to_string(s.height) +

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/base/errors.hpp"
+#include "core/base/names.hpp"
 #include "core/base/random.hpp"
 #include "core/session/param_map.hpp"
 #include "core/sim/simulator.hpp"
@@ -175,7 +176,8 @@ void checkBrush(const Brush& brush, const ReactionModel& model, const Domain& do
         const ParamSpec* p = model.param(brush.param);
         if (!p)
             throw InputError("brush parameter '" + brush.param + "' is not a parameter of " +
-                             model.name() + " (accepted: " + model.paramNames() + ")");
+                             model.name() + " (accepted: " + model.paramNames() + ")" +
+                             didYouMean(brush.param, splitNameList(model.paramNames())));
         if (brush.value < p->min || brush.value > p->max)
             throw InputError("brush value " + std::to_string(brush.value) + " for '" + brush.param +
                              "' is outside its range [" + std::to_string(p->min) + ", " +

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/base/names.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/numerics/resample.hpp"
 #include "core/operators/stability.hpp"
@@ -239,7 +240,8 @@ void SessionRun::setParams(const ParamValues& params) {
         const ParamSpec* p = model.param(name);
         if (!p)
             throw InputError("parameter '" + name + "' is not a parameter of model '" +
-                             model.name() + "' (accepted: " + model.paramNames() + ")");
+                             model.name() + "' (accepted: " + model.paramNames() + ")" +
+                             didYouMean(name, splitNameList(model.paramNames())));
         if (!std::isfinite(value) || value < p->min || value > p->max) {
             std::ostringstream os;
             os << "parameter " << name << " = " << value << " is outside [" << p->min << ", "
