@@ -55,7 +55,8 @@ TEST(TextureSet, PeriodicRampWrapsAtTheSeam) {
         for (int x = 0; x < w; ++x)
             height[std::size_t(y * w + x)] = float(x) / float(w);
     const float s = 2.0f;
-    const std::vector<float> n = normalMap(height, w, h, EdgeMode::Periodic, s, NormalFormat::OpenGl);
+    const std::vector<float> n =
+        normalMap(height, w, h, EdgeMode::Periodic, s, NormalFormat::OpenGl);
     const float slope = 1.0f / float(w);
     // The seam's differences read across the wrap: (h[1] - h[w-1]) / 2 at x = 0,
     // (h[0] - h[w-2]) / 2 at x = w - 1.
@@ -78,7 +79,8 @@ TEST(TextureSet, RampInYPointsGreenUpForOpenGlAndDirectXFlipsGreenOnly) {
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             height[std::size_t(y * w + x)] = a * float(y); // rises down the image
-    const std::vector<float> gl = normalMap(height, w, h, EdgeMode::Clamped, 1, NormalFormat::OpenGl);
+    const std::vector<float> gl =
+        normalMap(height, w, h, EdgeMode::Clamped, 1, NormalFormat::OpenGl);
     for (int y = 1; y < h - 1; ++y)
         for (int x = 0; x < w; ++x)
             expectNormal(gl, w, x, y, encoded(0.0f, -a)); // downhill going up the image
@@ -87,7 +89,8 @@ TEST(TextureSet, RampInYPointsGreenUpForOpenGlAndDirectXFlipsGreenOnly) {
     // On any field DirectX is the OpenGL map with green mirrored about 0.5.
     for (float& v : height)
         v = u(rng);
-    const std::vector<float> g = normalMap(height, w, h, EdgeMode::Periodic, 4, NormalFormat::OpenGl);
+    const std::vector<float> g =
+        normalMap(height, w, h, EdgeMode::Periodic, 4, NormalFormat::OpenGl);
     const std::vector<float> d =
         normalMap(height, w, h, EdgeMode::Periodic, 4, NormalFormat::DirectX);
     bool greenDiffers = false;
@@ -107,14 +110,16 @@ TEST(TextureSet, NormalMapOfAPeriodicFieldTiles) {
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     for (float& v : height)
         v = u(rng);
-    const std::vector<float> n = normalMap(height, w, h, EdgeMode::Periodic, 2, NormalFormat::OpenGl);
+    const std::vector<float> n =
+        normalMap(height, w, h, EdgeMode::Periodic, 2, NormalFormat::OpenGl);
     // Shift the field so that its old wrap-around columns and rows are in the
     // middle: each texel's normal must move with it, seams included.
     const int sx = 5, sy = 7;
     std::vector<float> shifted(height.size());
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            shifted[std::size_t(((y + sy) % h) * w + (x + sx) % w)] = height[std::size_t(y * w + x)];
+            shifted[std::size_t(((y + sy) % h) * w + (x + sx) % w)] =
+                height[std::size_t(y * w + x)];
     const std::vector<float> m =
         normalMap(shifted, w, h, EdgeMode::Periodic, 2, NormalFormat::OpenGl);
     for (int y = 0; y < h; ++y)
@@ -128,9 +133,9 @@ TEST(TextureSet, NormalMapOfAPeriodicFieldTiles) {
     // first) is no larger than between interior neighbours.
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            height[std::size_t(y * w + x)] =
-                0.5f + 0.5f * std::sin(6.2831853f * float(x) / float(w)) *
-                           std::cos(6.2831853f * float(y) / float(h));
+            height[std::size_t(y * w + x)] = 0.5f + 0.5f *
+                                                        std::sin(6.2831853f * float(x) / float(w)) *
+                                                        std::cos(6.2831853f * float(y) / float(h));
     const std::vector<float> smooth =
         normalMap(height, w, h, EdgeMode::Periodic, 4, NormalFormat::OpenGl);
     const auto jump = [&](int x0, int y0, int x1, int y1) {

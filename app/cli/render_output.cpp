@@ -7,11 +7,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
+#include <sstream>
 
-#include "core/output/colormap.hpp"
-#include "core/output/texture_set.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/output/colormap.hpp"
+#include "core/output/texture_set.hpp"
 #include "core/sim/runner.hpp"
 #include "core/sim/stability_check.hpp"
 
@@ -71,8 +72,16 @@ void addTextureSetFlags(CLI::App& cmd, TextureSetFlags& flags) {
 
 namespace {
 
+// "1.5", "-1": a flag's value as the user would have written it.
+std::string shortNumber(double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+}
+
 std::array<float, 2> parseHeightRange(const std::string& text) {
-    const std::string what = "--height-range '" + text + "': expected LO:HIGH, two finite numbers "
+    const std::string what = "--height-range '" + text +
+                             "': expected LO:HIGH, two finite numbers "
                              "with LO < HIGH (chemical values mapped to height 0 and 1)";
     const std::size_t colon = text.find(':', 1); // a leading '-' is a sign, not the separator
     if (colon == std::string::npos)
@@ -100,7 +109,7 @@ void applyTextureSetFlags(const TextureSetFlags& flags, Session& session) {
     if (flags.normalStrengthSet) {
         if (!std::isfinite(flags.normalStrength) || flags.normalStrength < 0 ||
             flags.normalStrength > kMaxNormalStrength)
-            throw InputError("--normal-strength " + std::to_string(flags.normalStrength) +
+            throw InputError("--normal-strength " + shortNumber(flags.normalStrength) +
                              " is out of range (accepted: 0 to " +
                              std::to_string(int(kMaxNormalStrength)) +
                              " texels of displacement per height range)");
@@ -116,7 +125,7 @@ void applyTextureSetFlags(const TextureSetFlags& flags, Session& session) {
     if (flags.maskThresholdSet) {
         if (!std::isfinite(flags.maskThreshold) || flags.maskThreshold < 0 ||
             flags.maskThreshold > 1)
-            throw InputError("--mask-threshold " + std::to_string(flags.maskThreshold) +
+            throw InputError("--mask-threshold " + shortNumber(flags.maskThreshold) +
                              " is out of range (accepted: 0 to 1, a height over its range)");
         h.maskThreshold = float(flags.maskThreshold);
     }

@@ -4,8 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "core/sim/runner.hpp"
 #include "core/session/session.hpp"
+#include "core/sim/runner.hpp"
 
 namespace morphogen::cli {
 
@@ -31,19 +31,20 @@ void writeRenderOutput(const RunResult& result, const std::string& imagePath,
 
 // `render --texture-set DIR` and the flags that set the session's "height" block.
 struct TextureSetFlags {
-    std::string dir;             // empty: no texture set
-    std::string heightRange;     // LO:HIGH
-    double normalStrength = -1;  // < 0 unset (-1 given on purpose is refused below)
+    std::string dir;         // empty: no texture set
+    std::string heightRange; // LO:HIGH; empty: the session's or the model's levels
+    // Numbers count only when given (the *Set flags), so a session's value stays otherwise.
+    double normalStrength = 0;
     bool normalStrengthSet = false;
     std::string normalFormat;
-    double maskThreshold = -1;
+    double maskThreshold = 0;
     bool maskThresholdSet = false;
 };
 
 // Registers --texture-set and its flags on `cmd`.
 void addTextureSetFlags(CLI::App& cmd, TextureSetFlags& flags);
 
-// Applies the flags to session.height (InputError for a bad value) and, with a
+// Applies the flags to session.heightMaps (InputError for a bad value) and, with a
 // folder, creates it and checks it is writable: all before the run.
 void applyTextureSetFlags(const TextureSetFlags& flags, Session& session);
 

@@ -110,8 +110,8 @@ void writeRgbImage(const std::string& path, const std::vector<float>& rgb, int w
     writeInterleaved(path, rgb, width, height, 3, bitDepth);
 }
 
-void writeGreyImage(const std::string& path, const std::vector<float>& grey, int width,
-                    int height, int bitDepth) {
+void writeGreyImage(const std::string& path, const std::vector<float>& grey, int width, int height,
+                    int bitDepth) {
     writeInterleaved(path, grey, width, height, 1, bitDepth);
 }
 

@@ -70,9 +70,9 @@ std::vector<float> heightMask(const std::vector<float>& height, float threshold)
 }
 
 const std::vector<std::string>& textureSetFiles() {
-    static const std::vector<std::string> files = {
-        "albedo.png", "height.png",  "height.exr",      "normal.png",
-        "mask.png",   "session.json", "texture_set.json"};
+    static const std::vector<std::string> files = {"albedo.png",      "height.png", "height.exr",
+                                                   "normal.png",      "mask.png",   "session.json",
+                                                   "texture_set.json"};
     return files;
 }
 
@@ -85,9 +85,8 @@ void prepareTextureSetDir(const std::string& dir) {
     checkWritable((fs::path(dir) / "texture_set.json").string());
 }
 
-nlohmann::json textureSetManifest(const Session& session, int chemical,
-                                  const HeightLevels& levels, float observedMin,
-                                  float observedMax) {
+nlohmann::json textureSetManifest(const Session& session, int chemical, const HeightLevels& levels,
+                                  float observedMin, float observedMax) {
     const ReactionModel& model = session.outputModel();
     const std::string chem = model.chemicals()[std::size_t(chemical)].name;
     const HeightSpec& h = session.heightMaps;
@@ -100,22 +99,26 @@ nlohmann::json textureSetManifest(const Session& session, int chemical,
                          {"colour_space", colourSpace},
                          {"bit_depth", depth}});
     };
-    file("albedo.png", "colour map '" + session.colormap.name + "' of chemical '" + chem +
-                           "' (per-image min-max, levels [" +
-                           std::to_string(session.colormap.levels[0]) + ", " +
-                           std::to_string(session.colormap.levels[1]) + "])",
+    file("albedo.png",
+         "colour map '" + session.colormap.name + "' of chemical '" + chem +
+             "' (per-image min-max, levels [" + std::to_string(session.colormap.levels[0]) + ", " +
+             std::to_string(session.colormap.levels[1]) + "])",
          "sRGB", 8);
-    file("height.png", "height of chemical '" + chem + "': (value - low) / (high - low), clamped "
-                       "to [0, 1], grey",
+    file("height.png",
+         "height of chemical '" + chem +
+             "': (value - low) / (high - low), clamped "
+             "to [0, 1], grey",
          "linear", 16);
-    file("height.exr", "height of chemical '" + chem + "': (value - low) / (high - low), not "
-                       "clamped, one float channel 'height'",
+    file("height.exr",
+         "height of chemical '" + chem +
+             "': (value - low) / (high - low), not "
+             "clamped, one float channel 'height'",
          "linear", "32-bit float");
-    file("normal.png", "tangent-space normal map of the height, RGB = n * 0.5 + 0.5",
-         "linear", 8);
+    file("normal.png", "tangent-space normal map of the height, RGB = n * 0.5 + 0.5", "linear", 8);
     file("mask.png", "255 where the height is above mask_threshold, else 0", "linear", 8);
-    file("session.json", "the session that reproduces this set (morphogen render --session "
-                         "session.json --texture-set DIR)",
+    file("session.json",
+         "the session that reproduces this set (morphogen render --session "
+         "session.json --texture-set DIR)",
          "", json());
     return {{"generator", "morphogen render --texture-set"},
             {"size", {session.width, session.height}},
@@ -128,8 +131,8 @@ nlohmann::json textureSetManifest(const Session& session, int chemical,
               {"observed", {observedMin, observedMax}}}},
             {"normal",
              {{"format", toString(h.normalFormat)},
-              {"green", h.normalFormat == NormalFormat::OpenGl ? "+Y up the image"
-                                                                : "+Y down the image"},
+              {"green",
+               h.normalFormat == NormalFormat::OpenGl ? "+Y up the image" : "+Y down the image"},
               {"strength", h.normalStrength},
               {"strength_units", "texels of displacement for a height step of 1 (low to high)"},
               {"differences", session.edges == EdgeMode::Periodic
@@ -158,8 +161,8 @@ void writeTextureSet(const std::string& dir, const State& state, const Session& 
                   normalMap(h, w, hgt, session.edges, session.heightMaps.normalStrength,
                             session.heightMaps.normalFormat),
                   w, hgt, 8);
-    writeGreyImage((d / "mask.png").string(), heightMask(h, session.heightMaps.maskThreshold), w, hgt,
-                   8);
+    writeGreyImage((d / "mask.png").string(), heightMask(h, session.heightMaps.maskThreshold), w,
+                   hgt, 8);
     saveSessionFile(session, (d / "session.json").string());
 
     const float* c = state.plane(chemical);

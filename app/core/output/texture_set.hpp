@@ -58,8 +58,7 @@ void prepareTextureSetDir(const std::string& dir);
 void writeTextureSet(const std::string& dir, const State& state, const Session& session);
 
 // The manifest texture_set.json holds (exposed for tests).
-nlohmann::json textureSetManifest(const Session& session, int chemical,
-                                  const HeightLevels& levels, float observedMin,
-                                  float observedMax);
+nlohmann::json textureSetManifest(const Session& session, int chemical, const HeightLevels& levels,
+                                  float observedMin, float observedMax);
 
 } // namespace morphogen

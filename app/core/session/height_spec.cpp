@@ -16,13 +16,17 @@ constexpr EnumName<NormalFormat> kNormalFormatNames[] = {
 
 } // namespace
 
-std::string toString(NormalFormat format) { return nameOf(kNormalFormatNames, format); }
+std::string toString(NormalFormat format) {
+    return nameOf(kNormalFormatNames, format);
+}
 
 std::optional<NormalFormat> parseNormalFormat(std::string_view name) {
     return valueNamed(kNormalFormatNames, name);
 }
 
-std::string normalFormatNames() { return nameList(kNormalFormatNames); }
+std::string normalFormatNames() {
+    return nameList(kNormalFormatNames);
+}
 
 HeightSpec heightSpecFromJson(const FieldReader& top, const nlohmann::json& block) {
     FieldReader reader(block, top.source(), "height");
@@ -34,16 +38,16 @@ HeightSpec heightSpecFromJson(const FieldReader& top, const nlohmann::json& bloc
             reader.failField("range", expected);
         std::array<float, 2> r{};
         for (std::size_t i = 0; i < 2; ++i)
-            r[i] = float(reader.numberValue((*range)[i], "range[" + std::to_string(i) + "]",
-                                            -1e30, 1e30));
+            r[i] = float(
+                reader.numberValue((*range)[i], "range[" + std::to_string(i) + "]", -1e30, 1e30));
         if (!(r[0] < r[1]))
             reader.failField("range", expected);
         spec.range = r;
     }
     spec.normalStrength =
         float(reader.number("normal_strength", spec.normalStrength, 0.0, kMaxNormalStrength));
-    spec.normalFormat = reader.choice("normal_format", spec.normalFormat, parseNormalFormat,
-                                      normalFormatNames());
+    spec.normalFormat =
+        reader.choice("normal_format", spec.normalFormat, parseNormalFormat, normalFormatNames());
     spec.maskThreshold = float(reader.number("mask_threshold", spec.maskThreshold, 0.0, 1.0));
     return spec;
 }
