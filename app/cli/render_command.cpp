@@ -46,6 +46,7 @@ struct RenderFlags {
     std::string chemical;
     std::string levels;
     int bitDepth = 8;
+    TextureSetFlags textureSet;
 };
 
 // An enumeration's name given to `flag`; throws InputError listing `accepted`.
@@ -178,16 +179,24 @@ std::string defaultSessionOut(const std::string& out) {
 
 void render(const RenderFlags& f) {
     Session session = buildSession(f);
-    imageFormatForPath(f.out); // an unsupported extension is bad input, found before the run
+    if (f.out.empty() && f.textureSet.dir.empty())
+        throw InputError("render needs --out FILE or --texture-set DIR (or both)");
+    applyTextureSetFlags(f.textureSet, session);
+    const bool image = !f.out.empty(); // without --out, only the texture set is written
+    if (image)
+        imageFormatForPath(f.out); // an unsupported extension is bad input, found before the run
     if (f.bitDepth != 8 && f.bitDepth != 16)
         throw InputError("--bit-depth " + std::to_string(f.bitDepth) +
                          " is not supported (accepted: 8, 16)");
-    const std::string sessionOut = f.sessionOut.empty() ? defaultSessionOut(f.out) : f.sessionOut;
-    if (sessionOut == f.out)
+    const std::string sessionOut =
+        f.sessionOut.empty() && image ? defaultSessionOut(f.out) : f.sessionOut;
+    if (image && sessionOut == f.out)
         throw InputError("--session-out must differ from --out");
     // Fail before a long run, not after it.
-    checkWritable(f.out);
-    checkWritable(sessionOut);
+    if (image)
+        checkWritable(f.out);
+    if (!sessionOut.empty())
+        checkWritable(sessionOut);
 
     checkStability(session);
     gl::Backend backend =
@@ -214,8 +223,14 @@ void render(const RenderFlags& f) {
         progress.finish("done: " + std::to_string(result.stepsDone) + " steps");
     }
 
-    writeRenderOutput(result, f.out, sessionOut, f.bitDepth);
-    std::printf("%s\n%s\n", f.out.c_str(), sessionOut.c_str());
+    if (image) {
+        writeRenderOutput(result, f.out, sessionOut, f.bitDepth);
+        std::printf("%s\n%s\n", f.out.c_str(), sessionOut.c_str());
+    } else if (!sessionOut.empty()) {
+        saveSessionFile(result.completed, sessionOut);
+        std::printf("%s\n", sessionOut.c_str());
+    }
+    writeTextureSetOutput(result, f.textureSet);
     if (result.cancelled)
         throw std::runtime_error("interrupted; wrote the state after " +
                                  std::to_string(result.stepsDone) + " steps");
@@ -232,8 +247,8 @@ void addRenderCommand(CLI::App& app) {
                     std::string("built-in preset name (default ") + kDefaultPreset + ")");
     cmd->add_option("--session", flags->sessionFile, "session JSON file");
     cmd->add_option("--out", flags->out,
-                    "output image: .png/.tif (colour-mapped) or .exr (raw float chemicals)")
-        ->required();
+                    "output image: .png/.tif (colour-mapped) or .exr (raw float chemicals); "
+                    "needed unless --texture-set is given");
     cmd->add_option("--session-out", flags->sessionOut,
                     "where to write the session JSON (default: --out with .json)");
     cmd->add_option("--size", flags->size, "grid size N or WxH");
@@ -261,6 +276,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--levels", flags->levels,
                     "LOW:HIGH window on the min-max normalised value (default 0:1)");
     cmd->add_option("--bit-depth", flags->bitDepth, "8 or 16 bits per channel for PNG/TIFF");
+    addTextureSetFlags(*cmd, flags->textureSet);
     cmd->callback([flags] { render(*flags); });
 }
 

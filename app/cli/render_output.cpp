@@ -1,11 +1,18 @@
 #include "cli/render_output.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <sstream>
 
-#include "core/output/colormap.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/output/colormap.hpp"
+#include "core/output/texture_set.hpp"
 #include "core/sim/runner.hpp"
 #include "core/sim/stability_check.hpp"
 
@@ -39,6 +46,98 @@ void writeRenderOutput(const RunResult& result, const std::string& imagePath,
                       session.width, session.height, bitDepth);
     }
     saveSessionFile(session, sessionPath);
+}
+
+} // namespace morphogen::cli
+
+namespace morphogen::cli {
+
+void addTextureSetFlags(CLI::App& cmd, TextureSetFlags& flags) {
+    cmd.add_option("--texture-set", flags.dir,
+                   "also (or, without --out, only) write a texture set into this folder: albedo, "
+                   "height (16-bit PNG and EXR), normal and mask maps, session.json and the "
+                   "texture_set.json manifest");
+    cmd.add_option("--height-range", flags.heightRange,
+                   "LO:HIGH chemical values mapped to height 0 and 1 (default: the model's "
+                   "display range)");
+    cmd.add_option("--normal-strength", flags.normalStrength,
+                   "texels of displacement for a height step of the whole range (default 1)")
+        ->each([&flags](const std::string&) { flags.normalStrengthSet = true; });
+    cmd.add_option("--normal-format", flags.normalFormat,
+                   "normal map green channel: opengl (+Y up) or directx (+Y down); default opengl");
+    cmd.add_option("--mask-threshold", flags.maskThreshold,
+                   "mask is 255 where the height (0..1 over its range) is above this (default 0.5)")
+        ->each([&flags](const std::string&) { flags.maskThresholdSet = true; });
+}
+
+namespace {
+
+// "1.5", "-1": a flag's value as the user would have written it.
+std::string shortNumber(double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+}
+
+std::array<float, 2> parseHeightRange(const std::string& text) {
+    const std::string what = "--height-range '" + text +
+                             "': expected LO:HIGH, two finite numbers "
+                             "with LO < HIGH (chemical values mapped to height 0 and 1)";
+    const std::size_t colon = text.find(':', 1); // a leading '-' is a sign, not the separator
+    if (colon == std::string::npos)
+        throw InputError(what);
+    std::array<float, 2> r{};
+    const std::string parts[2] = {text.substr(0, colon), text.substr(colon + 1)};
+    for (int i = 0; i < 2; ++i) {
+        char* end = nullptr;
+        const double v = std::strtod(parts[i].c_str(), &end);
+        if (parts[i].empty() || *end != '\0' || !std::isfinite(v) || std::abs(v) > 1e30)
+            throw InputError(what);
+        r[std::size_t(i)] = float(v);
+    }
+    if (!(r[0] < r[1]))
+        throw InputError(what);
+    return r;
+}
+
+} // namespace
+
+void applyTextureSetFlags(const TextureSetFlags& flags, Session& session) {
+    HeightSpec& h = session.heightMaps;
+    if (!flags.heightRange.empty())
+        h.range = parseHeightRange(flags.heightRange);
+    if (flags.normalStrengthSet) {
+        if (!std::isfinite(flags.normalStrength) || flags.normalStrength < 0 ||
+            flags.normalStrength > kMaxNormalStrength)
+            throw InputError("--normal-strength " + shortNumber(flags.normalStrength) +
+                             " is out of range (accepted: 0 to " +
+                             std::to_string(int(kMaxNormalStrength)) +
+                             " texels of displacement per height range)");
+        h.normalStrength = float(flags.normalStrength);
+    }
+    if (!flags.normalFormat.empty()) {
+        const std::optional<NormalFormat> format = parseNormalFormat(flags.normalFormat);
+        if (!format)
+            throw InputError("--normal-format '" + flags.normalFormat +
+                             "' is unknown (accepted: " + normalFormatNames() + ")");
+        h.normalFormat = *format;
+    }
+    if (flags.maskThresholdSet) {
+        if (!std::isfinite(flags.maskThreshold) || flags.maskThreshold < 0 ||
+            flags.maskThreshold > 1)
+            throw InputError("--mask-threshold " + shortNumber(flags.maskThreshold) +
+                             " is out of range (accepted: 0 to 1, a height over its range)");
+        h.maskThreshold = float(flags.maskThreshold);
+    }
+    if (!flags.dir.empty())
+        prepareTextureSetDir(flags.dir);
+}
+
+void writeTextureSetOutput(const RunResult& result, const TextureSetFlags& flags) {
+    if (flags.dir.empty())
+        return;
+    writeTextureSet(flags.dir, result.state, result.completed);
+    std::printf("%s\n", (std::filesystem::path(flags.dir) / "texture_set.json").string().c_str());
 }
 
 } // namespace morphogen::cli

@@ -2,8 +2,10 @@
 
 #include <string>
 
-#include "core/sim/runner.hpp"
+#include <CLI/CLI.hpp>
+
 #include "core/session/session.hpp"
+#include "core/sim/runner.hpp"
 
 namespace morphogen::cli {
 
@@ -26,5 +28,28 @@ int runChunk(const Session& session);
 // that reproduces it, to `sessionPath`.
 void writeRenderOutput(const RunResult& result, const std::string& imagePath,
                        const std::string& sessionPath, int bitDepth);
+
+// `render --texture-set DIR` and the flags that set the session's "height" block.
+struct TextureSetFlags {
+    std::string dir;         // empty: no texture set
+    std::string heightRange; // LO:HIGH; empty: the session's or the model's levels
+    // Numbers count only when given (the *Set flags), so a session's value stays otherwise.
+    double normalStrength = 0;
+    bool normalStrengthSet = false;
+    std::string normalFormat;
+    double maskThreshold = 0;
+    bool maskThresholdSet = false;
+};
+
+// Registers --texture-set and its flags on `cmd`.
+void addTextureSetFlags(CLI::App& cmd, TextureSetFlags& flags);
+
+// Applies the flags to session.heightMaps (InputError for a bad value) and, with a
+// folder, creates it and checks it is writable: all before the run.
+void applyTextureSetFlags(const TextureSetFlags& flags, Session& session);
+
+// Writes the set of result into flags.dir (core/output/texture_set.hpp) and
+// prints its manifest's path; does nothing without a folder.
+void writeTextureSetOutput(const RunResult& result, const TextureSetFlags& flags);
 
 } // namespace morphogen::cli

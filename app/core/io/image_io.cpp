@@ -1,6 +1,7 @@
 #include "core/io/image_io.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -73,28 +74,45 @@ void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const
 
 } // namespace
 
-void writeRgbImage(const std::string& path, const std::vector<float>& rgb, int width, int height,
-                   int bitDepth) {
+namespace {
+
+void writeInterleaved(const std::string& path, const std::vector<float>& values, int width,
+                      int height, int channels, int bitDepth) {
+    assert(values.size() == std::size_t(width) * std::size_t(height) * std::size_t(channels));
     const ImageFormat format = imageFormatForPath(path);
     if (format == ImageFormat::Exr) {
-        OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::FLOAT);
-        writeAtomically(path, spec, rgb.data());
+        OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
+        writeAtomically(path, spec, values.data());
         return;
     }
     if (bitDepth != 8 && bitDepth != 16)
         throw InputError("bit depth " + std::to_string(bitDepth) +
                          " is not supported (accepted: 8, 16)");
     if (bitDepth == 8) {
-        std::vector<unsigned char> px(rgb.size());
-        for (std::size_t i = 0; i < rgb.size(); ++i)
-            px[i] = toUnorm8(rgb[i]);
-        writeAtomically(path, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8), px.data());
+        std::vector<unsigned char> px(values.size());
+        for (std::size_t i = 0; i < values.size(); ++i)
+            px[i] = toUnorm8(values[i]);
+        writeAtomically(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT8),
+                        px.data());
     } else {
-        std::vector<unsigned short> px(rgb.size());
-        for (std::size_t i = 0; i < rgb.size(); ++i)
-            px[i] = (unsigned short)std::lround(std::clamp(rgb[i], 0.0f, 1.0f) * 65535.0f);
-        writeAtomically(path, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT16), px.data());
+        std::vector<unsigned short> px(values.size());
+        for (std::size_t i = 0; i < values.size(); ++i)
+            px[i] = (unsigned short)std::lround(std::clamp(values[i], 0.0f, 1.0f) * 65535.0f);
+        writeAtomically(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT16),
+                        px.data());
     }
+}
+
+} // namespace
+
+void writeRgbImage(const std::string& path, const std::vector<float>& rgb, int width, int height,
+                   int bitDepth) {
+    writeInterleaved(path, rgb, width, height, 3, bitDepth);
+}
+
+void writeGreyImage(const std::string& path, const std::vector<float>& grey, int width, int height,
+                    int bitDepth) {
+    writeInterleaved(path, grey, width, height, 1, bitDepth);
 }
 
 void writeRawImage(const std::string& path, const State& state,

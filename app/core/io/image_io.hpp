@@ -31,6 +31,11 @@ inline std::uint8_t toUnorm8(float v) {
 void writeRgbImage(const std::string& path, const std::vector<float>& rgb, int width, int height,
                    int bitDepth);
 
+// Writes one channel in [0, 1] as an 8- or 16-bit grey PNG/TIFF (or float EXR),
+// atomically like writeRgbImage.
+void writeGreyImage(const std::string& path, const std::vector<float>& grey, int width,
+                    int height, int bitDepth);
+
 // Writes the raw float concentrations, one channel per chemical with its name
 // (OpenEXR, or float TIFF).
 void writeRawImage(const std::string& path, const State& state,

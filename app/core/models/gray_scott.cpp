@@ -16,6 +16,10 @@ GrayScottModel::GrayScottModel() {
                 {"Du", 0.2097f, 0.0f, 10.0f, "diffusion rate of u (cell^2 per unit time)"},
                 {"Dv", 0.105f, 0.0f, 10.0f, "diffusion rate of v (cell^2 per unit time)"}};
     m_displayChemical = 1;
+    // Texture-set height levels: u falls from 1 to ~0.2 in a pattern; v peaks
+    // near 0.4 in Pearson's patterns (coral, mitosis, worms at 0.38..0.43).
+    m_chemicals[0].displayRange = {0.0f, 1.0f};
+    m_chemicals[1].displayRange = {0.0f, 0.5f};
     // Pearson's dt = 1 sits on the stability edge in high-v states
     // (8 Du + v^2 + F ~ 2.05 at F 0.06, k 0.03): it leaves a period-2
     // checkerboard there. 0.9 keeps every preset stable.

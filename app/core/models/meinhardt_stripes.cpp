@@ -22,6 +22,9 @@ MeinhardtStripesModel::MeinhardtStripesModel() {
         {"rho0", 0.0f, 0.0f, 10.0f, "basic production of g1, g2"},
         {"rho1", 0.0f, 0.0f, 10.0f, "basic production of s1, s2"}};
     m_displayChemical = 0;
+    // Texture-set height levels: g1, g2 span 0..~1.5 in the stripe presets.
+    m_chemicals[0].displayRange = {0.0f, 1.5f};
+    m_chemicals[1].displayRange = {0.0f, 1.5f};
     m_defaultDt = 1.0f;
     // The homogeneous steady state for the default rates, g = beta / (2 alpha)
     // and r = 2 c g^3 / beta; the substrate's noise breaks its symmetry.

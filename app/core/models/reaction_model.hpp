@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -32,6 +33,9 @@ struct ChemicalSpec {
     // Values outside this range mean the run has blown up.
     float saneMin = -1e4f;
     float saneMax = 1e4f;
+    // The values a settled pattern spans: a texture set's fixed height levels
+    // (the same for every render, unlike the colour map's per-image min-max).
+    std::array<float, 2> displayRange = {0.0f, 1.0f};
 };
 
 // Parameter values by name, complete for a model (defaults filled in).

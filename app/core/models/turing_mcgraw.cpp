@@ -14,6 +14,9 @@ TuringMcGrawModel::TuringMcGrawModel() {
                 {"du", 2.0f, 0.0f, 100.0f, "diffusion rate of u (the activator)"},
                 {"dv", 8.0f, 0.0f, 100.0f, "diffusion rate of v (the substrate)"}};
     m_displayChemical = 0;
+    // Texture-set height levels: u spans 0..~8 (set (c) ~10) in the presets.
+    m_chemicals[0].displayRange = {0.0f, 12.0f};
+    m_chemicals[1].displayRange = {0.0f, 12.0f};
     m_defaultDt = 0.02f;
     m_defaultInit.base = {{"u", 4.0f}, {"v", 4.0f}};
     m_defaultInit.noise = {{"u", 2.0f}, {"v", 2.0f}};

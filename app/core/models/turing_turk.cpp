@@ -18,6 +18,9 @@ TuringTurkModel::TuringTurkModel() {
                 {"beta_mean", 12.0f, 0.0f, 100.0f, "mean of the per-cell beta field"},
                 {"beta_noise", 0.1f, 0.0f, 100.0f, "beta = beta_mean + U(-noise, noise)"}};
     m_displayChemical = 1;
+    // Texture-set height levels: b spans 0..~7 in the spot presets (a, b start at 4).
+    m_chemicals[0].displayRange = {0.0f, 8.0f};
+    m_chemicals[1].displayRange = {0.0f, 8.0f};
     m_defaultDt = 0.18f;
     m_defaultInit.base = {{"a", 4.0f}, {"b", 4.0f}};
 }

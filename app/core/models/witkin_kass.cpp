@@ -16,6 +16,9 @@ WitkinKassModel::WitkinKassModel() {
                 {"threshold", 0.0f, -100.0f, 100.0f,
                  "the reaction fires where C+ - C- exceeds it (eq. 13: 0)"}};
     m_displayChemical = 0;
+    // Texture-set height levels: p spans ~0.05..0.96 in the stripe presets.
+    m_chemicals[0].displayRange = {0.0f, 1.0f};
+    m_chemicals[1].displayRange = {0.0f, 1.0f};
     // Section 6.2: h = 1, dt = 0.02, both morphogens start as noise in [-1, 1].
     m_defaultDt = 0.02f;
     m_defaultInit.base = {{"p", 0.0f}, {"m", 0.0f}};

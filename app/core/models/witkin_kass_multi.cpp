@@ -42,6 +42,9 @@ template <int N, WkMultiReaction Kind> WitkinKassMultiModel<N, Kind>::WitkinKass
     m_params.push_back(
         {"D", 1.0f, 0.0f, 100.0f, "diffusion rate of every chemical (times its tensor)"});
     m_displayChemical = 0;
+    // Texture-set height levels: p1 spans ~0.1..3.7 in the maze and coral presets.
+    for (ChemicalSpec& c : m_chemicals)
+        c.displayRange = {0.0f, 4.0f};
     // Section 6.2's scales: h = 1, dt = 0.02, uniform random start in [-1, 1].
     m_defaultDt = 0.02f;
     for (const ChemicalSpec& c : m_chemicals) {

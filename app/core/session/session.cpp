@@ -247,7 +247,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
     top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
                        "integrator", "relaxation_passes", "jacobi_sweeps", "schedule", "stages",
-                       "param_maps", "tiles", "dt", "steps", "seed", "init", "colormap"});
+                       "param_maps", "tiles", "dt", "steps", "seed", "init", "colormap",
+                       "height"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");
@@ -294,6 +295,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
     // The colours show the final state: the last stage's model's chemicals.
     if (const json* cm = top.find("colormap"))
         s.colormap = colormapFromJson(top, *cm, s.outputModel(), &s.outputModel() != model);
+    if (const json* height = top.find("height"))
+        s.heightMaps = heightSpecFromJson(top, *height);
     return s;
 }
 
@@ -335,6 +338,8 @@ json sessionToJson(const Session& s) {
     if (s.colormap.levels != ColorMapSpec{}.levels)
         cm["levels"] = s.colormap.levels;
     j["colormap"] = cm;
+    if (s.heightMaps != HeightSpec{})
+        j["height"] = heightSpecToJson(s.heightMaps);
     return j;
 }
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "core/session/cascade.hpp"
+#include "core/session/height_spec.hpp"
 #include "core/models/diffusion_spec.hpp"
 #include "core/domain/domain.hpp"
 #include "core/models/initial_condition.hpp"
@@ -82,6 +83,8 @@ struct Session {
     std::uint64_t seed = 1;
     InitialCondition init;
     ColorMapSpec colormap;
+    // Height, normal and mask maps of a texture set ("height").
+    HeightSpec heightMaps;
     // Folder that relative paths in the session (images) resolve against; set
     // by loadSessionFile, not serialised.
     std::string baseDir;
