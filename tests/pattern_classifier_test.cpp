@@ -79,6 +79,32 @@ TEST(PatternClassifier, FlatFieldsAreUniform) {
               PatternClass::Uniform);
 }
 
+// A dot lattice far too faint to see: the feature finder still counts its dots (it thresholds
+// relative to the plane's own range), but the class is uniform, so the reported stats must not
+// list features, a wavelength or an orientation next to "uniform".
+TEST(PatternClassifier, UniformStatsListNoStructure) {
+    const State faint = makeField([](int x, int y) { return 0.5 + 1e-4 * dot(x, y); });
+    const PatternStats measured = measurePattern(faint, 0);
+    ASSERT_EQ(classifyPattern(measured), PatternClass::Uniform);
+    ASSERT_GT(measured.featureCount, 0); // the contradiction the report must not carry
+    const PatternStats reported = statsForClass(measured, PatternClass::Uniform);
+    EXPECT_EQ(reported.featureCount, 0);
+    EXPECT_EQ(reported.dominantWavelength, 0);
+    EXPECT_EQ(reported.orientationStrength, 0);
+    EXPECT_EQ(reported.meanFeatureArea, 0);
+    EXPECT_EQ(reported.elongation, 0);
+    EXPECT_EQ(reported.mean, measured.mean);
+    EXPECT_EQ(reported.variance, measured.variance);
+
+    // Other classes keep what was measured.
+    const State dots = makeField(dot);
+    const PatternStats spots = measurePattern(dots, 0);
+    ASSERT_EQ(classifyPattern(spots), PatternClass::Spots);
+    EXPECT_EQ(statsForClass(spots, PatternClass::Spots).featureCount, spots.featureCount);
+    EXPECT_EQ(statsForClass(spots, PatternClass::Spots).dominantWavelength,
+              spots.dominantWavelength);
+}
+
 TEST(PatternClassifier, DotLatticeIsSpotsEitherWayUp) {
     EXPECT_EQ(classify(makeField(dot), "light dots"), PatternClass::Spots);
     EXPECT_EQ(classify(makeField([](int x, int y) { return 1.0 - dot(x, y); }), "dark dots"),

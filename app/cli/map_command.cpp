@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "cli/commands.hpp"
@@ -13,6 +14,7 @@
 #include "cli/plot_frame.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
+#include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
 #include "core/output/colormap.hpp"
@@ -38,6 +40,7 @@ struct MapFlags {
     std::string context;
     std::string gpuDevice;
     std::string colormap;
+    std::string edges = "clamped";
 };
 
 // Ticks at "nice" values of a parameter swept over `cells` cells: cell i holds
@@ -73,6 +76,13 @@ MapPlan planMap(const MapFlags& f) {
                          std::to_string(kMaxGridSide));
     keepSeedSpotDensity(s, f.size, !f.preset.empty());
     s.width = s.height = f.size;
+    // Periodic edges would join the two ends of each swept range, coupling unrelated parameter
+    // values into an artefact strip along the borders; zero-flux edges keep each end to itself.
+    const std::optional<EdgeMode> edges = parseEdgeMode(f.edges);
+    if (!edges)
+        throw InputError("--edges '" + f.edges + "' is unknown (accepted: " + edgeModeNames() +
+                         ")" + didYouMean(f.edges, splitNameList(edgeModeNames())));
+    s.edges = *edges;
     s.schedule.clear();
     if (f.steps >= 0)
         applySteps(s, f.steps, "--steps");
@@ -162,6 +172,9 @@ void addMapCommand(CLI::App& app) {
         "--gpu-device", flags->gpuDevice,
         "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
     cmd->add_option("--colormap", flags->colormap, "colour map name");
+    cmd->add_option(
+        "--edges", flags->edges,
+        "clamped (zero-flux, the default: the ends of the axes stay apart) or periodic");
     cmd->callback([flags] { map(*flags); });
 }
 

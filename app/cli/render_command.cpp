@@ -113,6 +113,12 @@ Session buildSession(const RenderFlags& f) {
     if (!f.schedule.empty()) {
         if (!f.size.empty() || f.steps >= 0)
             throw InputError("--schedule sets the sizes and steps: drop --size and --steps");
+        // The runner has no coarse-to-fine path through a cascade; refusing keeps the written
+        // session a record of what ran.
+        if (!s.stages.empty())
+            throw InputError("--schedule does not combine with cascade \"stages\" (" +
+                             std::to_string(s.stages.size()) +
+                             " stages of their own steps): drop --schedule, or use --size");
         applySchedule(s, parseSchedule(f.schedule));
     } else if (!s.schedule.empty() && (!f.size.empty() || f.steps >= 0)) {
         throw InputError("--size and --steps do not apply to a session with a coarse-to-fine "

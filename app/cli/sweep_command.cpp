@@ -240,8 +240,10 @@ std::vector<TileResult> measureTiles(const SweepSpec& spec, const std::vector<St
             r.row = row;
             r.x = sweepValue(spec.x, column, spec.columns);
             r.y = sweepValue(spec.y, row, spec.rows);
-            r.stats = measurePattern(tiles[std::size_t(row * spec.columns + column)], chemical);
-            r.cls = classifyPattern(r.stats, &model.chemicals()[std::size_t(chemical)]);
+            const PatternStats measured =
+                measurePattern(tiles[std::size_t(row * spec.columns + column)], chemical);
+            r.cls = classifyPattern(measured, &model.chemicals()[std::size_t(chemical)]);
+            r.stats = statsForClass(measured, r.cls);
             results.push_back(r);
         }
     return results;

@@ -156,4 +156,19 @@ PatternClass classifyPattern(const PatternStats& stats, const ChemicalSpec* sane
     return PatternClass::Mixed;
 }
 
+PatternStats statsForClass(PatternStats stats, PatternClass c) {
+    if (c != PatternClass::Uniform)
+        return stats;
+    stats.dominantWavelength = 0;
+    stats.nyquistFraction = 0;
+    stats.orientationStrength = 0;
+    stats.featureCount = 0;
+    stats.minorityFraction = 0;
+    stats.meanFeatureArea = 0;
+    stats.largestFeatureShare = 0;
+    stats.elongation = 0;
+    stats.elongatedShare = 0;
+    return stats;
+}
+
 } // namespace morphogen

@@ -2,9 +2,9 @@
 
 #include <string>
 
-#include "core/models/reaction_model.hpp"
 #include "core/base/state.hpp"
 #include "core/domain/domain.hpp"
+#include "core/models/reaction_model.hpp"
 
 namespace morphogen {
 
@@ -63,5 +63,13 @@ std::string toString(PatternClass c);
 // worms, labyrinths); Mixed: both in comparable amounts. Thresholds are in
 // pattern_classifier.cpp with their reasons.
 PatternClass classifyPattern(const PatternStats& stats, const ChemicalSpec* saneRange = nullptr);
+
+// `stats` as a report lists them next to their class `c`. A uniform plane has no visible
+// structure, so the structure measures that the flat field's round-off or faint noise still
+// produced (feature count and areas, wavelength, orientation, elongation) read 0, not a count
+// that contradicts "uniform"; mean, variance, min and max are kept. Other classes are unchanged
+// (they already agree: spots and stripes need features; "mixed" with 0 features means
+// structure only in features of < 3 cells).
+PatternStats statsForClass(PatternStats stats, PatternClass c);
 
 } // namespace morphogen

@@ -245,10 +245,13 @@ ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const Reac
 
 Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
-    top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
-                       "integrator", "relaxation_passes", "jacobi_sweeps", "schedule", "stages",
-                       "param_maps", "tiles", "dt", "steps", "seed", "init", "colormap",
-                       "height"});
+    top.rejectUnknown({"name",          "description", "model",
+                       "params",        "size",        "edges",
+                       "diffusion",     "integrator",  "relaxation_passes",
+                       "jacobi_sweeps", "schedule",    "stages",
+                       "param_maps",    "tiles",       "dt",
+                       "steps",         "seed",        "init",
+                       "colormap",      "height"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");
@@ -491,6 +494,9 @@ void validateSession(const Session& s, const std::string& source) {
         throw InputError(source + ": dt must be a positive number");
     if (s.steps < 0)
         throw InputError(source + ": steps must be >= 0");
+    if (!s.schedule.empty() && !s.stages.empty())
+        throw InputError(source + ": a coarse-to-fine \"schedule\" does not combine with "
+                                  "cascade \"stages\": give one of them");
     // A size override must keep a batched sweep's tiles whole.
     if (s.tiles.active() && (s.width % s.tiles.columns != 0 || s.height % s.tiles.rows != 0 ||
                              s.width / s.tiles.columns < 4 || s.height / s.tiles.rows < 4 ||
