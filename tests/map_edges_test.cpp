@@ -11,6 +11,7 @@
 #include "test_support.hpp"
 
 using namespace morphogen;
+using morphogen::test::runCpu;
 
 namespace {
 
@@ -54,12 +55,12 @@ TEST(MapEdges, ClampedEdgesKeepTheEndsOfTheSweptAxisApart) {
     constexpr int v = 1;
     const State periodic = runCpu(sweptSession(EdgeMode::Periodic));
     const State clamped = runCpu(sweptSession(EdgeMode::Clamped));
-    // Precondition: the low-k edge has a pattern in both runs.
-    ASSERT_GT(columnRange(periodic, v, 0), 0.05f);
-    ASSERT_GT(columnRange(clamped, v, 0), 0.05f);
-    // Periodic: the left edge's pattern reaches the right edge through the wrap.
-    EXPECT_GT(columnMax(periodic, v, kWidth - 1), 1e-3f);
-    // Clamped: the right edge sees only its own (inert) neighbours and settles uniform.
-    EXPECT_LT(columnMax(clamped, v, kWidth - 1), 1e-5f);
-    EXPECT_LT(columnRange(clamped, v, kWidth - 1), 1e-5f);
+    // Precondition: v persists at the low-k edge in both runs (a solid or patterned region).
+    ASSERT_GT(columnMax(periodic, v, 0), 0.1f);
+    ASSERT_GT(columnMax(clamped, v, 0), 0.1f);
+    // Periodic: the left edge's v reaches the high-k right edge through the wrap (measured 0.12).
+    EXPECT_GT(columnMax(periodic, v, kWidth - 1), 1e-2f);
+    // Clamped: the right edge sees only its own inert neighbours and settles uniform (v ~ 1e-19).
+    EXPECT_LT(columnMax(clamped, v, kWidth - 1), 1e-6f);
+    EXPECT_LT(columnRange(clamped, v, kWidth - 1), 1e-6f);
 }
