@@ -8,6 +8,7 @@
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
+#include "cli/render_frames.hpp"
 #include "cli/render_output.hpp"
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
@@ -47,6 +48,7 @@ struct RenderFlags {
     std::string levels;
     int bitDepth = 8;
     TextureSetFlags textureSet;
+    FrameFlags frames;
 };
 
 // An enumeration's name given to `flag`; throws InputError listing `accepted`.
@@ -183,7 +185,8 @@ std::string defaultSessionOut(const std::string& out) {
     return p.replace_extension(".json").string();
 }
 
-void render(const RenderFlags& f) {
+void render(const RenderFlags& flags) {
+    RenderFlags f = flags; // prepareFrames resolves the frame folder
     Session session = buildSession(f);
     if (f.out.empty() && f.textureSet.dir.empty())
         throw InputError("render needs --out FILE or --texture-set DIR (or both)");
@@ -203,6 +206,8 @@ void render(const RenderFlags& f) {
         checkWritable(f.out);
     if (!sessionOut.empty())
         checkWritable(sessionOut);
+    if (f.frames.wanted())
+        prepareFrames(f.frames, f.out, session);
 
     checkStability(session);
     gl::Backend backend =
@@ -219,7 +224,8 @@ void render(const RenderFlags& f) {
         options.progress = [&](int done, int) { progress.update(done); };
         options.cancel = interrupt.flag();
         options.chunk = runChunk(session);
-        result = runSession(session, backend.makeSimulator, options);
+        result = f.frames.wanted() ? renderFrames(session, backend.makeSimulator, options, f.frames)
+                                   : runSession(session, backend.makeSimulator, options);
     }
 
     if (result.cancelled) {
@@ -237,6 +243,8 @@ void render(const RenderFlags& f) {
         std::printf("%s\n", sessionOut.c_str());
     }
     writeTextureSetOutput(result, f.textureSet);
+    if (f.frames.wanted() && !result.cancelled)
+        encodeVideo(f.frames);
     if (result.cancelled)
         throw std::runtime_error("interrupted; wrote the state after " +
                                  std::to_string(result.stepsDone) + " steps");
@@ -283,6 +291,7 @@ void addRenderCommand(CLI::App& app) {
                     "LOW:HIGH window on the min-max normalised value (default 0:1)");
     cmd->add_option("--bit-depth", flags->bitDepth, "8 or 16 bits per channel for PNG/TIFF");
     addTextureSetFlags(*cmd, flags->textureSet);
+    addFrameFlags(*cmd, flags->frames);
     cmd->callback([flags] { render(*flags); });
 }
 
