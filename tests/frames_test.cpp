@@ -17,8 +17,7 @@ namespace morphogen {
 namespace {
 
 // `f` throws InputError whose message contains `needle`.
-template <class F>
-void expectInputError(F f, const std::string& needle) {
+template <class F> void expectInputError(F f, const std::string& needle) {
     try {
         f();
         ADD_FAILURE() << "no InputError (want '" << needle << "')";
@@ -107,12 +106,12 @@ TEST(RunWithFrames, CascadeFramesComeFromTheOneRunAndEndOnItsResult) {
     ASSERT_EQ(steps, (std::vector<int>{30, 60, 90, 120}));
     std::vector<int> seen;
     State last;
-    const RunResult r = runWithFrames(s, cpu(), options, steps,
-                                      [&](int index, const RunResult& sofar) {
-                                          EXPECT_EQ(index, int(seen.size()));
-                                          seen.push_back(sofar.stepsDone);
-                                          last = sofar.state;
-                                      });
+    const RunResult r =
+        runWithFrames(s, cpu(), options, steps, [&](int index, const RunResult& sofar) {
+            EXPECT_EQ(index, int(seen.size()));
+            seen.push_back(sofar.stepsDone);
+            last = sofar.state;
+        });
     EXPECT_EQ(seen, steps);
     const RunResult plain = runSession(s, cpu(), options);
     EXPECT_EQ(r.stepsDone, 120);
