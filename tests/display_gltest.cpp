@@ -160,9 +160,8 @@ TEST(Display, CustomGradientsUpToTheAnchorLimit) {
     Session s = test::smallSession("gs_coral", 23, 0);
     s.width = 31;
     const State state = ranState(s, 60);
-    expectGpuMatchesWriter(s, state,
-                           {"custom", "v", {0.0f, 1.0f},
-                            parseGradient("#1b1b1b,#d9a441,#f4e8c1", "test")});
+    expectGpuMatchesWriter(
+        s, state, {"custom", "v", {0.0f, 1.0f}, parseGradient("#1b1b1b,#d9a441,#f4e8c1", "test")});
     // Sixteen stops (the uniform array's size), alternating, so every anchor shows.
     std::string sixteen;
     for (int i = 0; i < kMaxGradientStops; ++i)

@@ -27,8 +27,8 @@ Rgb hex(unsigned v) {
 enum class Palette { Grey, TwoColour, Viridis, Magma, Inferno, Coolwarm, Custom };
 
 const EnumName<Palette> kPalettes[] = {
-    {Palette::Grey, "grey"},   {Palette::TwoColour, "two-colour"}, {Palette::Viridis, "viridis"},
-    {Palette::Magma, "magma"}, {Palette::Inferno, "inferno"},      {Palette::Coolwarm, "coolwarm"},
+    {Palette::Grey, "grey"},    {Palette::TwoColour, "two-colour"}, {Palette::Viridis, "viridis"},
+    {Palette::Magma, "magma"},  {Palette::Inferno, "inferno"},      {Palette::Coolwarm, "coolwarm"},
     {Palette::Custom, "custom"}};
 
 const EnumAlias<Palette> kPaletteAliases[] = {{"gray", Palette::Grey},

@@ -228,8 +228,8 @@ ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const Reac
     spec.name = reader.string("name", colours ? "custom" : spec.name);
     if (colours) {
         if (!isCustomColormapName(spec.name))
-            reader.failField("colours", "apply only to the map named \"custom\", not '" +
-                                            spec.name + "'");
+            reader.failField("colours",
+                             "apply only to the map named \"custom\", not '" + spec.name + "'");
         if (!colours->is_array())
             reader.failField("colours", "must be an array of \"#rrggbb\" or \"#rgb\" strings");
         for (std::size_t i = 0; i < colours->size(); ++i) {
