@@ -390,3 +390,7 @@ run(2 "--levels '0.9:0.1' is not LOW:HIGH" colour col.exr --levels 0.9:0.1 --out
 if(EXISTS "${WORK}/x.png")
   message(SEND_ERROR "a refused colour or render wrote x.png")
 endif()
+run(2 "colour map 'custom' needs its colours" map --model gray_scott --x F:0.02:0.06 --y k:0.05:0.07 --size 16 --steps 1 --colormap custom --out x.png)
+if(EXISTS "${WORK}/x.png")
+  message(SEND_ERROR "map --colormap custom without stops wrote x.png")
+endif()

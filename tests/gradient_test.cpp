@@ -115,10 +115,17 @@ TEST(Gradient, CustomMapSamplesItsStopsEvenlySpaced) {
     empty.name = "custom";
     EXPECT_NE(errorOf([&] { colormapAnchors(empty); }).find("needs its colours"),
               std::string::npos);
+    // Another map ignores the stops, and a session with it does not write them.
     ColorMapSpec other = spec;
     other.name = "viridis";
-    EXPECT_NE(errorOf([&] { colormapAnchors(other); }).find("apply only to the map 'custom'"),
-              std::string::npos);
+    other.levels = {0.2f, 0.8f};
+    ColorMapSpec plain;
+    plain.name = "viridis";
+    plain.levels = other.levels;
+    EXPECT_EQ(applyColormap(ramp, 0, other), applyColormap(ramp, 0, plain));
+    Session s = loadPreset("gs_coral");
+    s.colormap = other;
+    EXPECT_FALSE(sessionToJson(s)["colormap"].contains("colours"));
     EXPECT_EQ(canonicalColormapName("Custom"), "custom");
 }
 

@@ -104,9 +104,6 @@ std::vector<Rgb> colormapAnchors(const ColorMapSpec& spec) {
     const Palette palette = parsePalette(spec.name);
     if (palette == Palette::Grey)
         return {{0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}};
-    if (palette != Palette::Custom && !spec.colours.empty())
-        throw InputError("colour stops apply only to the map 'custom', not '" + spec.name +
-                         "' (drop --colormap, or use --colormap custom)");
     if (palette == Palette::TwoColour)
         return {spec.low, spec.high};
     if (palette == Palette::Custom) {

@@ -362,7 +362,7 @@ json sessionToJson(const Session& s) {
         cm["chemical"] = s.colormap.chemical;
     cm["low"] = s.colormap.low;
     cm["high"] = s.colormap.high;
-    if (!s.colormap.colours.empty()) {
+    if (isCustomColormapName(s.colormap.name)) {
         cm["colours"] = json::array();
         for (const std::array<float, 3>& c : s.colormap.colours)
             cm["colours"].push_back(hexColour(c));
