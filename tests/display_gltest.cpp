@@ -10,6 +10,7 @@
 
 #include "core/io/image_io.hpp"
 #include "core/output/colormap.hpp"
+#include "core/session/gradient.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "gl/display.hpp"
 #include "gl/gpu_simulator.hpp"
@@ -56,6 +57,7 @@ struct Case {
     std::string map;
     std::string chemical;
     std::array<float, 2> levels;
+    std::vector<std::array<float, 3>> colours = {}; // the "custom" map's stops
 };
 
 // GPU display of `state` (set on a GpuSimulator of s) against the writer,
@@ -73,6 +75,7 @@ void expectGpuMatchesWriter(const Session& s, const State& state, const Case& c)
     spec.chemical = c.chemical;
     spec.levels = c.levels;
     spec.low = {0.1f, 0.3f, 0.05f};
+    spec.colours = c.colours;
     const int chemical = colormapChemical(spec, s.reactionModel());
     gl::Display display(s.width, s.height);
     display.render(gpu, chemical, spec);
@@ -150,4 +153,18 @@ TEST(Display, FlatFieldMapsToTheLowEnd) {
     EXPECT_LE(compare(display.downloadRgba8(), writerPixels(state, 0, spec)).first, 1);
     const std::vector<std::uint8_t> px = display.downloadRgba8();
     EXPECT_LE(px[0] + px[1] + px[2], 6); // magma's near-black end
+}
+
+TEST(Display, CustomGradientsUpToTheAnchorLimit) {
+    test::glContext();
+    Session s = test::smallSession("gs_coral", 23, 0);
+    s.width = 31;
+    const State state = ranState(s, 60);
+    expectGpuMatchesWriter(
+        s, state, {"custom", "v", {0.0f, 1.0f}, parseGradient("#1b1b1b,#d9a441,#f4e8c1", "test")});
+    // Sixteen stops (the uniform array's size), alternating, so every anchor shows.
+    std::string sixteen;
+    for (int i = 0; i < kMaxGradientStops; ++i)
+        sixteen += std::string(sixteen.empty() ? "" : ",") + (i % 2 ? "#f4e8c1" : "#203a80");
+    expectGpuMatchesWriter(s, state, {"custom", "v", {0.1f, 0.9f}, parseGradient(sixteen, "test")});
 }

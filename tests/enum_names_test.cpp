@@ -48,5 +48,6 @@ TEST(EnumNames, StencilsRoundTrip) {
 TEST(EnumNames, JoinNamesListsInOrder) {
     EXPECT_EQ(joinNames(std::vector<std::string>{}), "");
     EXPECT_EQ(joinNames(std::vector<std::string>{"a"}), "a");
-    EXPECT_EQ(joinNames(colormapNames()), "grey, two-colour, viridis, magma, inferno, coolwarm");
+    EXPECT_EQ(joinNames(colormapNames()),
+              "grey, two-colour, viridis, magma, inferno, coolwarm, custom");
 }

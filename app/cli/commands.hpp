@@ -14,5 +14,6 @@ void addPropagatorCommand(CLI::App& app);
 void addGalleryCommand(CLI::App& app);
 void addMapCommand(CLI::App& app);
 void addSweepCommand(CLI::App& app);
+void addColourCommand(CLI::App& app);
 
 } // namespace morphogen::cli

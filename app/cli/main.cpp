@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     morphogen::cli::addGalleryCommand(app);
     morphogen::cli::addMapCommand(app);
     morphogen::cli::addSweepCommand(app);
+    morphogen::cli::addColourCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -99,6 +99,7 @@ MapPlan planMap(const MapFlags& f) {
     if (!f.colormap.empty())
         s.colormap.name = f.colormap;
     s.colormap.name = canonicalColormapName(s.colormap.name);
+    colormapAnchors(s.colormap); // 'custom' without stops is refused before the run
     s.paramMaps[plan.x.param] = {ParamMapSpec::Field::LinearX, plan.x.min, plan.x.max};
     s.paramMaps[plan.y.param] = {ParamMapSpec::Field::LinearY, plan.y.min, plan.y.max};
     validateSession(s, "map");

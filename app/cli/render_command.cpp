@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "cli/colour_flags.hpp"
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
@@ -47,6 +48,7 @@ struct RenderFlags {
     std::string chemical;
     std::string levels;
     int bitDepth = 8;
+    GradientFlags gradient;
     TextureSetFlags textureSet;
     FrameFlags frames;
 };
@@ -174,7 +176,7 @@ Session buildSession(const RenderFlags& f) {
                              "' is not LOW:HIGH with 0 <= LOW < HIGH <= 1 (e.g. 0.3:0.5)");
         s.colormap.levels = {low, high};
     }
-    s.colormap.name = canonicalColormapName(s.colormap.name);
+    applyGradientFlags(f.gradient, f.colormap, s.colormap);
     colormapChemical(s.colormap, s.outputModel());
     validateSession(s, f.sessionFile.empty() ? "preset " + s.name : f.sessionFile);
     return s;
@@ -290,6 +292,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--levels", flags->levels,
                     "LOW:HIGH window on the min-max normalised value (default 0:1)");
     cmd->add_option("--bit-depth", flags->bitDepth, "8 or 16 bits per channel for PNG/TIFF");
+    addGradientFlags(*cmd, flags->gradient);
     addTextureSetFlags(*cmd, flags->textureSet);
     addFrameFlags(*cmd, flags->frames);
     cmd->callback([flags] { render(*flags); });

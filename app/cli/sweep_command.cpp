@@ -194,6 +194,7 @@ SweepSpec sweepSpec(const SweepFlags& f) {
     if (f.seed >= 0)
         base.seed = std::uint64_t(f.seed);
     base.colormap.name = canonicalColormapName(base.colormap.name);
+    colormapAnchors(base.colormap); // 'custom' without stops is refused before the run
 
     // Stability at the corners covers the grid: a rate grows monotonically
     // along an axis. The smallest dt found applies to every tile.

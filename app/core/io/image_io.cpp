@@ -181,3 +181,37 @@ std::vector<float> loadLuminance(const std::string& path, int width, int height)
 }
 
 } // namespace morphogen
+
+namespace morphogen {
+
+RawImage readRawImage(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError(path + ": raw state image not found");
+    auto input = OIIO::ImageInput::open(path);
+    if (!input)
+        throw InputError(path + ": cannot read the image (" + OIIO::geterror() +
+                         "); accepted: the .exr (or float .tif) that render --out writes");
+    const OIIO::ImageSpec spec = input->spec();
+    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
+        throw InputError(path + ": the image is empty");
+    if (spec.nchannels > kMaxChemicals)
+        throw InputError(path + ": " + std::to_string(spec.nchannels) +
+                         " channels, more than any model has chemicals (" +
+                         std::to_string(kMaxChemicals) + ")");
+    const std::size_t nc = std::size_t(spec.nchannels);
+    std::vector<float> px(std::size_t(spec.width) * std::size_t(spec.height) * nc);
+    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()))
+        throw InputError(path + ": cannot read the image's pixels (" + input->geterror() +
+                         "); is the file truncated?");
+    input->close();
+    RawImage raw{State(spec.width, spec.height, spec.nchannels), spec.channelnames};
+    for (int c = 0; c < spec.nchannels; ++c) {
+        float* p = raw.state.plane(c);
+        for (std::size_t i = 0; i < raw.state.cellCount(); ++i)
+            p[i] = px[i * nc + std::size_t(c)];
+    }
+    return raw;
+}
+
+} // namespace morphogen

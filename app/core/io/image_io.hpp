@@ -51,4 +51,13 @@ namespace morphogen {
 // the file for a missing, unreadable or empty image.
 std::vector<float> loadLuminance(const std::string& path, int width, int height);
 
+// A raw state written by writeRawImage (.exr or float .tif): one plane per
+// channel, row 0 at the top, with the file's channel names. Throws InputError
+// naming the file for a missing or unreadable image.
+struct RawImage {
+    State state;
+    std::vector<std::string> channelNames;
+};
+RawImage readRawImage(const std::string& path);
+
 } // namespace morphogen

@@ -8,8 +8,12 @@
 
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
+#include "core/session/gradient.hpp"
 
 namespace morphogen {
+
+// The display pass's uniform array must hold the longest custom gradient.
+static_assert(kMaxColormapAnchors >= kMaxGradientStops);
 
 namespace {
 
@@ -20,11 +24,12 @@ Rgb hex(unsigned v) {
             float(v & 0xff) / 255.0f};
 }
 
-enum class Palette { Grey, TwoColour, Viridis, Magma, Inferno, Coolwarm };
+enum class Palette { Grey, TwoColour, Viridis, Magma, Inferno, Coolwarm, Custom };
 
 const EnumName<Palette> kPalettes[] = {
-    {Palette::Grey, "grey"},   {Palette::TwoColour, "two-colour"}, {Palette::Viridis, "viridis"},
-    {Palette::Magma, "magma"}, {Palette::Inferno, "inferno"},      {Palette::Coolwarm, "coolwarm"}};
+    {Palette::Grey, "grey"},    {Palette::TwoColour, "two-colour"}, {Palette::Viridis, "viridis"},
+    {Palette::Magma, "magma"},  {Palette::Inferno, "inferno"},      {Palette::Coolwarm, "coolwarm"},
+    {Palette::Custom, "custom"}};
 
 const EnumAlias<Palette> kPaletteAliases[] = {{"gray", Palette::Grey},
                                               {"two-color", Palette::TwoColour},
@@ -101,6 +106,14 @@ std::vector<Rgb> colormapAnchors(const ColorMapSpec& spec) {
         return {{0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}};
     if (palette == Palette::TwoColour)
         return {spec.low, spec.high};
+    if (palette == Palette::Custom) {
+        if (spec.colours.empty())
+            throw InputError("colour map 'custom' needs its colours (--colours "
+                             "'#1b1b1b,#d9a441,#f4e8c1', --palette FILE, or \"colours\" in the "
+                             "session's \"colormap\")");
+        checkGradientStops(spec.colours.size(), "colour map 'custom'");
+        return spec.colours;
+    }
     return anchors(palette);
 }
 

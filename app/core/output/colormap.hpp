@@ -20,7 +20,8 @@ std::string canonicalColormapName(const std::string& name);
 int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model);
 
 // The map as evenly spaced anchors, interpolated piecewise linearly: grey is
-// black to white, two-colour spec.low to spec.high (what applyColormap and
+// black to white, two-colour spec.low to spec.high, custom spec.colours
+// (InputError without them; other maps ignore them) (what applyColormap and
 // the GPU display pass both sample).
 std::vector<std::array<float, 3>> colormapAnchors(const ColorMapSpec& spec);
 

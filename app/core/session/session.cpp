@@ -14,6 +14,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/json_fields.hpp"
 #include "core/domain/atlas.hpp"
+#include "core/session/gradient.hpp"
 
 namespace morphogen {
 
@@ -218,9 +219,35 @@ void readParamMaps(const FieldReader& top, const json& maps, const ReactionModel
 ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const ReactionModel& shown,
                               bool lastStageModel) {
     FieldReader reader(cm, top.source(), "colormap");
-    reader.rejectUnknown({"name", "chemical", "low", "high", "levels"});
+    reader.rejectUnknown({"name", "chemical", "low", "high", "levels", "colours", "colors"});
     ColorMapSpec spec;
-    spec.name = reader.string("name", spec.name);
+    const json* colours = reader.find("colours");
+    if (!colours)
+        colours = reader.find("colors");
+    // Stops without a name are a custom map; a named map with stops is a contradiction.
+    spec.name = reader.string("name", colours ? "custom" : spec.name);
+    if (colours) {
+        if (!isCustomColormapName(spec.name))
+            reader.failField("colours",
+                             "apply only to the map named \"custom\", not '" + spec.name + "'");
+        if (!colours->is_array())
+            reader.failField("colours", "must be an array of \"#rrggbb\" or \"#rgb\" strings");
+        for (std::size_t i = 0; i < colours->size(); ++i) {
+            const json& c = (*colours)[i];
+            const std::optional<std::array<float, 3>> rgb =
+                c.is_string() ? parseHexColour(c.get<std::string>()) : std::nullopt;
+            if (!rgb)
+                reader.failField("colours[" + std::to_string(i) + "]",
+                                 "is " + c.dump() + ", not a \"#rrggbb\" or \"#rgb\" colour");
+            spec.colours.push_back(*rgb);
+        }
+        if (spec.colours.size() < 2 || spec.colours.size() > std::size_t(kMaxGradientStops))
+            reader.failField("colours", "has " + std::to_string(spec.colours.size()) +
+                                            " colours (accepted: 2 to " +
+                                            std::to_string(kMaxGradientStops) + ")");
+    } else if (isCustomColormapName(spec.name)) {
+        reader.failField("name", "is 'custom', which needs \"colours\": [\"#rrggbb\", ...]");
+    }
     spec.chemical = reader.string("chemical", "");
     if (!spec.chemical.empty() && shown.chemicalIndex(spec.chemical) < 0)
         reader.failField("chemical",
@@ -335,6 +362,11 @@ json sessionToJson(const Session& s) {
         cm["chemical"] = s.colormap.chemical;
     cm["low"] = s.colormap.low;
     cm["high"] = s.colormap.high;
+    if (isCustomColormapName(s.colormap.name)) {
+        cm["colours"] = json::array();
+        for (const std::array<float, 3>& c : s.colormap.colours)
+            cm["colours"].push_back(hexColour(c));
+    }
     if (s.colormap.levels != ColorMapSpec{}.levels)
         cm["levels"] = s.colormap.levels;
     j["colormap"] = cm;

@@ -44,6 +44,8 @@ struct ColorMapSpec {
     // Ends of the "two-colour" blend, display (sRGB) values in [0, 1].
     std::array<float, 3> low = {0.05f, 0.05f, 0.1f};
     std::array<float, 3> high = {1.0f, 0.95f, 0.85f};
+    // The "custom" map's stops, evenly spaced sRGB (core/session/gradient.hpp).
+    std::vector<std::array<float, 3>> colours;
     // A window on the min-max normalised value, as an image editor's levels:
     // t -> clamp((t - levels[0]) / (levels[1] - levels[0]), 0, 1). A narrow
     // window makes a soft field a sharp-edged pattern (Witkin-Kass's cellular
