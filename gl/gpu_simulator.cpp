@@ -126,8 +126,7 @@ GpuSimulator::GpuSimulator(const Session& session)
     : m_session(session), m_model(&session.reactionModel()),
       m_k(StepConstants::fromSession(session)),
       m_pingPong(session.width, session.height, stateFormat(m_k.chemicals),
-                 wrapMode(session.domain()),
-                 stateTextures(m_k.chemicals)) {
+                 wrapMode(session.domain()), stateTextures(m_k.chemicals)) {
     const DiffusionOperator& op = m_k.op;
     buildPrograms();
     if (m_k.integrator == Integrator::SemiImplicit) {

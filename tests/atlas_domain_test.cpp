@@ -289,8 +289,8 @@ TEST(AtlasCpu, GenericPathOnRotatedTilesEqualsThePeriodicGrid) {
     Session grid = onAtlas;
     grid.atlas.reset();
     grid.width = grid.height = 3 * n;
-    const State gridStart = makeInitialState(grid.init, grid.reactionModel(), grid.params,
-                                             grid.width, grid.height, 9);
+    const State gridStart =
+        makeInitialState(grid.init, grid.reactionModel(), grid.params, grid.width, grid.height, 9);
     const int chemicals = gridStart.channels();
     State atlasStart(atlas->width(), atlas->height(), chemicals);
     for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)

@@ -5,10 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cascade_checks.hpp"
-#include "core/sim/cpu_simulator.hpp"
 #include "core/base/errors.hpp"
 #include "core/session/param_map.hpp"
 #include "core/session/session.hpp"
+#include "core/sim/cpu_simulator.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/sim/cpu_simulator.hpp"
 #include "core/base/errors.hpp"
+#include "core/sim/cpu_simulator.hpp"
 #include "core/sim/runner.hpp"
 #include "test_support.hpp"
 

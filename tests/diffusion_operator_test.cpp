@@ -6,11 +6,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/sim/cpu_simulator.hpp"
-#include "core/operators/diffusion_operator.hpp"
 #include "core/analysis/pattern_stats.hpp"
-#include "core/sim/runner.hpp"
+#include "core/operators/diffusion_operator.hpp"
 #include "core/operators/stability.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "core/sim/runner.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/sim/cpu_simulator.hpp"
 #include "core/analysis/pattern_stats.hpp"
-#include "core/sim/runner.hpp"
 #include "core/operators/stability.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "core/sim/runner.hpp"
 #include "gl/gpu_simulator.hpp"
 #include "gl_test_support.hpp"
 #include "test_support.hpp"

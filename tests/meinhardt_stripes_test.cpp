@@ -9,11 +9,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/sim/cpu_simulator.hpp"
+#include "core/analysis/pattern_classifier.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/models/meinhardt_stripes.hpp"
-#include "core/analysis/pattern_classifier.hpp"
 #include "core/models/reaction_model.hpp"
+#include "core/sim/cpu_simulator.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;

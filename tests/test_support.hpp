@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <string>
 
-#include "core/session/session.hpp"
 #include "core/base/state.hpp"
+#include "core/session/session.hpp"
 
 namespace morphogen::test {
 

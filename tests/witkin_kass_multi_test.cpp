@@ -12,9 +12,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/sim/cpu_kernels.hpp"
-#include "core/models/witkin_kass_multi.hpp"
 #include "core/analysis/pattern_stats.hpp"
+#include "core/models/witkin_kass_multi.hpp"
+#include "core/sim/cpu_kernels.hpp"
 #include "core/sim/simulator.hpp"
 #include "test_support.hpp"
 

@@ -12,12 +12,12 @@
 #include "cli/bench_domains.hpp"
 #include "cli/bench_timing.hpp"
 #include "cli/commands.hpp"
-#include "core/sim/cpu_simulator.hpp"
-#include "core/sim/session_run.hpp"
+#include "core/analysis/pattern_stats.hpp"
 #include "core/base/errors.hpp"
 #include "core/models/initial_condition.hpp"
-#include "core/analysis/pattern_stats.hpp"
 #include "core/session/session.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "core/sim/session_run.hpp"
 #include "gl/backend.hpp"
 #include "gl/gpu_simulator.hpp"
 
@@ -200,10 +200,12 @@ nlohmann::json throughputRows(const Session& base, const BenchFlags& f, bool gpu
             std::fprintf(stderr, "bench: %dx%d gpu step...\n", n, n);
             gl::GpuSimulator gpu(s);
             gpu.setState(initial);
-            gpuStep = measureStepsPerSecond([&](int k) { gpu.run(k); }, [] { glFinish(); }, f.seconds, batch);
+            gpuStep = measureStepsPerSecond([&](int k) { gpu.run(k); }, [] { glFinish(); },
+                                            f.seconds, batch);
             std::fprintf(stderr, "bench: %dx%d gpu copy...\n", n, n);
             gl::CopyPass copy(n, n, int(s.reactionModel().chemicals().size()));
-            gpuCopy = measureStepsPerSecond([&](int k) { copy.run(k); }, [] { glFinish(); }, f.seconds, batch);
+            gpuCopy = measureStepsPerSecond([&](int k) { copy.run(k); }, [] { glFinish(); },
+                                            f.seconds, batch);
             row["gpu_step_iterations_per_s"] = gpuStep;
             row["gpu_step_cell_updates_per_s"] = gpuStep * cells;
             row["gpu_copy_iterations_per_s"] = gpuCopy;
@@ -249,7 +251,8 @@ nlohmann::json operatorRows(const Session& base, const BenchFlags& f, bool gpuRo
                 std::fprintf(stderr, "bench: %dx%d gpu %s...\n", n, n, name.c_str());
                 gl::GpuSimulator sim(s);
                 sim.setState(initial);
-                gpu = measureStepsPerSecond([&](int k) { sim.run(k); }, [] { glFinish(); }, f.seconds, batch);
+                gpu = measureStepsPerSecond([&](int k) { sim.run(k); }, [] { glFinish(); },
+                                            f.seconds, batch);
                 gpuBase = gpuBase > 0 ? gpuBase : gpu;
                 row["gpu_iterations_per_s"] = gpu;
                 row["gpu_over_5_point"] = gpu / gpuBase;

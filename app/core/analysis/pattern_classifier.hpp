@@ -2,9 +2,9 @@
 
 #include <string>
 
-#include "core/models/reaction_model.hpp"
 #include "core/base/state.hpp"
 #include "core/domain/domain.hpp"
+#include "core/models/reaction_model.hpp"
 
 namespace morphogen {
 

@@ -33,8 +33,8 @@ void writeRgbImage(const std::string& path, const std::vector<float>& rgb, int w
 
 // Writes one channel in [0, 1] as an 8- or 16-bit grey PNG/TIFF (or float EXR),
 // atomically like writeRgbImage.
-void writeGreyImage(const std::string& path, const std::vector<float>& grey, int width,
-                    int height, int bitDepth);
+void writeGreyImage(const std::string& path, const std::vector<float>& grey, int width, int height,
+                    int bitDepth);
 
 // Writes the raw float concentrations, one channel per chemical with its name
 // (OpenEXR, or float TIFF).

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "core/base/state.hpp"
 #include "core/models/diffusion_spec.hpp"
 #include "core/models/initial_condition.hpp"
-#include "core/base/state.hpp"
 
 namespace morphogen {
 

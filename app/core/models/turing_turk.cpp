@@ -1,7 +1,7 @@
 #include "core/models/turing_turk.hpp"
 
-#include "core/models/react_row.hpp"
 #include "core/base/random.hpp"
+#include "core/models/react_row.hpp"
 
 namespace morphogen {
 

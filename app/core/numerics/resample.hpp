@@ -1,7 +1,7 @@
 #pragma once
 
-#include "core/domain/grid_domain.hpp"
 #include "core/base/state.hpp"
+#include "core/domain/grid_domain.hpp"
 
 namespace morphogen {
 

@@ -6,9 +6,9 @@
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
 #include "core/numerics/kernel_symbol.hpp"
+#include "core/numerics/tensor_sequence.hpp"
 #include "core/operators/orientation_field.hpp"
 #include "core/session/session.hpp"
-#include "core/numerics/tensor_sequence.hpp"
 
 namespace morphogen {
 

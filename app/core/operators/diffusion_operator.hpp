@@ -3,8 +3,8 @@
 #include <array>
 #include <string>
 
-#include "core/numerics/kernel.hpp"
 #include "core/base/state.hpp"
+#include "core/numerics/kernel.hpp"
 
 namespace morphogen {
 

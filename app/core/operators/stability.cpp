@@ -1,7 +1,7 @@
 #include "core/operators/stability.hpp"
 
-#include "core/operators/diffusion_operator.hpp"
 #include "core/numerics/kernel_symbol.hpp"
+#include "core/operators/diffusion_operator.hpp"
 
 #include <algorithm>
 #include <cassert>

@@ -3,9 +3,9 @@
 #include <optional>
 #include <string>
 
+#include "core/base/state.hpp"
 #include "core/operators/diffusion_operator.hpp"
 #include "core/session/session.hpp"
-#include "core/base/state.hpp"
 
 namespace morphogen {
 

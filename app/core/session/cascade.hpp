@@ -8,8 +8,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "core/models/initial_condition.hpp"
 #include "core/base/state.hpp"
+#include "core/models/initial_condition.hpp"
 
 namespace morphogen {
 

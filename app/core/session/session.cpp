@@ -272,10 +272,13 @@ ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const Reac
 
 Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
-    top.rejectUnknown({"name", "description", "model", "params", "size", "edges", "diffusion",
-                       "integrator", "relaxation_passes", "jacobi_sweeps", "schedule", "stages",
-                       "param_maps", "tiles", "dt", "steps", "seed", "init", "colormap",
-                       "height"});
+    top.rejectUnknown({"name",          "description", "model",
+                       "params",        "size",        "edges",
+                       "diffusion",     "integrator",  "relaxation_passes",
+                       "jacobi_sweeps", "schedule",    "stages",
+                       "param_maps",    "tiles",       "dt",
+                       "steps",         "seed",        "init",
+                       "colormap",      "height"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");

@@ -1,8 +1,8 @@
 #pragma once
 
 #include <array>
-#include <memory>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -10,14 +10,14 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "core/domain/domain.hpp"
+#include "core/models/diffusion_spec.hpp"
+#include "core/models/initial_condition.hpp"
+#include "core/models/reaction_model.hpp"
 #include "core/session/cascade.hpp"
 #include "core/session/height_spec.hpp"
-#include "core/models/diffusion_spec.hpp"
-#include "core/domain/domain.hpp"
-#include "core/models/initial_condition.hpp"
 #include "core/session/param_map.hpp"
 #include "core/session/tile_grid.hpp"
-#include "core/models/reaction_model.hpp"
 
 namespace morphogen {
 

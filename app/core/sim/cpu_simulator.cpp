@@ -197,9 +197,9 @@ CpuSimulator::CpuSimulator(const Session& session)
                 m_unusedCells.push_back(i);
         const std::vector<std::uint32_t>& border = atlas->borderCells();
         for (int y = 0; y <= atlas->height(); ++y)
-            m_borderRows.push_back(std::size_t(
-                std::lower_bound(border.begin(), border.end(), atlas->cellAt(0, y)) -
-                border.begin()));
+            m_borderRows.push_back(
+                std::size_t(std::lower_bound(border.begin(), border.end(), atlas->cellAt(0, y)) -
+                            border.begin()));
         if (m_k.op.form == DiffusionOperator::Form::Laplacian9)
             m_diagonals = atlasDiagonals(*atlas);
     }
@@ -240,8 +240,7 @@ void CpuSimulator::restoreFrozen() {
     }
 }
 
-void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil,
-                                     float* out) const {
+void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil, float* out) const {
     const Atlas& atlas = *m_k.domain.atlasMap();
     const int w = atlas.width(), h = atlas.height();
     // Every texel on the texture's outer ring is a border or unused texel, so
@@ -266,16 +265,14 @@ float CpuSimulator::atlasLaplacian(const float* plane, std::uint32_t cell, Stenc
     // Each diagonal the mean of its two orders (equal away from irregular
     // corners, where 0.5 (v + v) == v exactly); the grid's order of corners.
     const std::array<std::uint32_t, 8>& d = m_diagonals[cell];
-    const float corners =
-        0.5f * (plane[d[0]] + plane[d[4]]) + 0.5f * (plane[d[1]] + plane[d[5]]) +
-        0.5f * (plane[d[2]] + plane[d[6]]) + 0.5f * (plane[d[3]] + plane[d[7]]);
+    const float corners = 0.5f * (plane[d[0]] + plane[d[4]]) + 0.5f * (plane[d[1]] + plane[d[5]]) +
+                          0.5f * (plane[d[2]] + plane[d[6]]) + 0.5f * (plane[d[3]] + plane[d[7]]);
     return (4.0f * sides + corners - 20.0f * plane[cell]) * (1.0f / 6.0f);
 }
 
 void CpuSimulator::redoAtlasBorder() {
-    const Stencil stencil = m_k.op.form == DiffusionOperator::Form::Laplacian5
-                                ? Stencil::FivePoint
-                                : Stencil::NinePoint;
+    const Stencil stencil = m_k.op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
+                                                                               : Stencil::NinePoint;
     const int nc = m_k.chemicals;
     const float dt = m_k.dt;
     const std::vector<std::uint32_t>& border = m_k.domain.atlasMap()->borderCells();
@@ -307,10 +304,9 @@ void CpuSimulator::redoAtlasBorder() {
                 for (std::size_t i = 0; i < count; ++i) {
                     const std::uint32_t cell = border[b0 + i];
                     const float term = d == 0.0f ? 0.0f : d * atlasLaplacian(plane, cell, stencil);
-                    m_next.plane(c)[cell] =
-                        std::min(std::max(view.c[c][i] + dt * (view.dcdt[c][i] + term),
-                                          m_k.clampMin[c]),
-                                 m_k.clampMax[c]);
+                    m_next.plane(c)[cell] = std::min(
+                        std::max(view.c[c][i] + dt * (view.dcdt[c][i] + term), m_k.clampMin[c]),
+                        m_k.clampMax[c]);
                 }
             }
         }
@@ -369,7 +365,7 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
         if (domain.kind() == DomainKind::Atlas) {
             atlasLaplacianRow(plane, y,
                               op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
-                                                                              : Stencil::NinePoint,
+                                                                             : Stencil::NinePoint,
                               out);
 #pragma omp simd
             for (int x = 0; x < w; ++x)
@@ -379,9 +375,8 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
         const float* up = plane + std::size_t(domain.neighbourRow(y, -1)) * w;
         const float* row = plane + std::size_t(y) * w;
         const float* down = plane + std::size_t(domain.neighbourRow(y, 1)) * w;
-        const Stencil stencil = op.form == DiffusionOperator::Form::Laplacian5
-                                    ? Stencil::FivePoint
-                                    : Stencil::NinePoint;
+        const Stencil stencil = op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
+                                                                               : Stencil::NinePoint;
         forEachRowSegment(domain, [&](int base, int sw, EdgeMode edges) {
             laplacianRow(up + base, row + base, down + base, out + base, sw, edges, stencil);
         });

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "core/base/state.hpp"
 #include "core/operators/diffusion_operator.hpp"
 #include "core/session/session.hpp"
-#include "core/base/state.hpp"
 #include "core/sim/brush.hpp"
 
 namespace morphogen {

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "core/sim/runner.hpp"
 #include "core/session/session.hpp"
+#include "core/sim/runner.hpp"
 
 namespace morphogen {
 
