@@ -348,18 +348,6 @@ void GpuSimulator::updateLiveUniforms() {
     }
 }
 
-void GpuSimulator::setParams(const ParamValues& params) {
-    Session next = m_session;
-    next.params = params;
-    applyLiveChange(std::move(next));
-}
-
-void GpuSimulator::setDt(float dt) {
-    Session next = m_session;
-    next.dt = dt;
-    applyLiveChange(std::move(next));
-}
-
 void GpuSimulator::applyLiveChange(Session next) {
     // Derived before anything changes: a refused change (InputError) leaves the run as it was.
     const bool uniformsOnly = updateLiveConstants(m_k, next);

@@ -77,8 +77,6 @@ public:
     const Texture2D& stateTexture(int t) const { return m_pingPong.current(t); }
     int stateTextureCount() const { return m_pingPong.count(); }
 
-    void setParams(const ParamValues& params) override;
-    void setDt(float dt) override;
     // Step programs compiled so far (tests check that live changes compile none).
     int programBuilds() const { return m_programBuilds; }
 
@@ -114,8 +112,8 @@ private:
     // coefficients) on one step program, and the semi-implicit weights.
     void setLiveUniforms(const Program& program) const;
     void updateLiveUniforms();
-    // Takes a session that differs from m_session in params or dt only.
-    void applyLiveChange(Session next);
+    const Session& liveSession() const override { return m_session; }
+    void applyLiveChange(Session next) override;
     mutable int m_programBuilds = 0;
 };
 

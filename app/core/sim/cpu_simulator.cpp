@@ -523,18 +523,6 @@ void CpuSimulator::pickKernels() {
             m_kernelTaps[std::size_t(c)] = kernelTaps(m_k.op, c);
 }
 
-void CpuSimulator::setParams(const ParamValues& params) {
-    Session next = m_session;
-    next.params = params;
-    applyLiveChange(std::move(next));
-}
-
-void CpuSimulator::setDt(float dt) {
-    Session next = m_session;
-    next.dt = dt;
-    applyLiveChange(std::move(next));
-}
-
 void CpuSimulator::applyLiveChange(Session next) {
     // Derived before anything changes: a refused change (InputError) leaves the run as it was.
     updateLiveConstants(m_k, next);

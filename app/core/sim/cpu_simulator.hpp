@@ -24,8 +24,6 @@ public:
     void run(int steps) override;
     void setFrozen(const std::vector<std::uint8_t>& frozen) override;
     void applyBrush(const Brush& brush) override; // cpu_brush.cpp
-    void setParams(const ParamValues& params) override;
-    void setDt(float dt) override;
 
     // Semi-implicit runs: max over cells of |(I - dt A) c' - (c + dt f(c))|
     // for the last step, i.e. how far the relaxation passes left the solve.
@@ -51,8 +49,8 @@ private:
     // own, tiles in parallel, while it fits in cache (cpu_tile_runs.cpp);
     // false where the one-pass row kernels must run instead.
     bool runTilesApart(int steps);
-    // Takes a session that differs from m_session in params or dt only.
-    void applyLiveChange(Session next);
+    const Session& liveSession() const override { return m_session; }
+    void applyLiveChange(Session next) override;
 
     // runTilesApart: one simulator per tile (row-major from the bottom row),
     // made on first use and dropped whenever the constants change.

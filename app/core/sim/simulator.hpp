@@ -91,8 +91,22 @@ public:
     // read-back: the GPU updates uniforms, the CPU its StepConstants.
     // `params` holds every parameter of the model (Session::params); mapped
     // parameters keep their per-cell maps. The caller validates the values.
-    virtual void setParams(const ParamValues& params) = 0;
-    virtual void setDt(float dt) = 0;
+    void setParams(const ParamValues& params) {
+        Session next = liveSession();
+        next.params = params;
+        applyLiveChange(std::move(next));
+    }
+    void setDt(float dt) {
+        Session next = liveSession();
+        next.dt = dt;
+        applyLiveChange(std::move(next));
+    }
+
+protected:
+    // The session the simulator runs now (live changes and painted maps applied).
+    virtual const Session& liveSession() const = 0;
+    // Takes a session that differs from liveSession() in params or dt only.
+    virtual void applyLiveChange(Session next) = 0;
 };
 
 // The constants a live change of parameters or dt alters (params, dt, the
