@@ -105,8 +105,7 @@ void parseSize(const std::string& text, Session& s) {
     if (!ok || w < 1 || h < 1 || w > kMaxGridSide || h > kMaxGridSide)
         throw InputError("--size '" + text + "': expected N or WxH with sides in 1.." +
                          std::to_string(kMaxGridSide));
-    s.width = w;
-    s.height = h;
+    resizeSession(s, w, h);
 }
 
 Session buildSession(const RenderFlags& f) {
@@ -123,6 +122,8 @@ Session buildSession(const RenderFlags& f) {
             throw InputError("--schedule does not combine with cascade \"stages\" (" +
                              std::to_string(s.stages.size()) +
                              " stages of their own steps): drop --schedule, or use --size");
+        if (s.length <= 0)
+            s.length = s.width; // the pattern keeps the scale it has at the session's own size
         applySchedule(s, parseSchedule(f.schedule));
     } else if (!s.schedule.empty() && (!f.size.empty() || f.steps >= 0)) {
         throw InputError("--size and --steps do not apply to a session with a coarse-to-fine "

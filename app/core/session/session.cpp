@@ -52,6 +52,19 @@ Domain Session::domain() const {
     return GridDomain(width, height, edges);
 }
 
+double Session::cellSize() const {
+    if (atlas || tiles.active() || length <= 0)
+        return 1.0;
+    return length / width;
+}
+
+void resizeSession(Session& session, int width, int height) {
+    if (session.length <= 0)
+        session.length = session.width;
+    session.width = width;
+    session.height = height;
+}
+
 void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas) {
     assert(atlas);
     session.width = atlas->width();
@@ -278,7 +291,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
                        "jacobi_sweeps", "schedule",    "stages",
                        "param_maps",    "tiles",       "dt",
                        "steps",         "seed",        "init",
-                       "colormap",      "height"});
+                       "colormap",      "height",      "length"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");
@@ -290,6 +303,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
     s.model = model->name();
     s.params = paramsFromJson(top, *model);
     readSize(top, s);
+    s.length = top.number("length", 0.0, 1e-3, 1e7);
     s.edges = top.choice("edges", s.edges, parseEdgeMode, edgeModeNames());
 
     // Like "init", a session's "diffusion" replaces the model's default whole.
@@ -339,6 +353,8 @@ json sessionToJson(const Session& s) {
     j["model"] = s.model;
     j["params"] = s.params;
     j["size"] = json::array({s.width, s.height});
+    if (s.length > 0)
+        j["length"] = s.length;
     j["edges"] = toString(s.edges);
     j["diffusion"] = diffusionToJson(s.diffusion);
     j["integrator"] = toString(s.integrator);

@@ -62,6 +62,12 @@ struct Session {
     ParamValues params; // complete after normalise()
     int width = 256;
     int height = 256;
+    // The image's width in model length units: diffusion rates are per unit^2,
+    // spot radii, lattice spacings and noise scales are in units, and width x
+    // height is only the resolution, so --size keeps the pattern and adds
+    // detail. 0: one unit per cell at this size (sessions written before
+    // "length", read as written for their own size).
+    double length = 0;
     EdgeMode edges = EdgeMode::Periodic;
     DiffusionSpec diffusion;
     float dt = 1.0f;
@@ -97,11 +103,18 @@ struct Session {
 
     // The grid, the tiled grid of a batched sweep, or the atlas.
     Domain domain() const;
+    // Model units per cell at width x height (h). A batched sweep's tiles and
+    // an atlas run at one unit per cell.
+    double cellSize() const;
     const ReactionModel& reactionModel() const; // asserts a known model
     // The model whose chemicals the final state holds: the last stage's that
     // changes model (a cascade such as Turk's giraffe), else reactionModel().
     const ReactionModel& outputModel() const;
 };
+
+// Changes the resolution, keeping the pattern: a session without a length
+// first takes its current width as its length.
+void resizeSession(Session& session, int width, int height);
 
 // Runs the session on `atlas`: its size becomes the atlas texture's.
 void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas);
