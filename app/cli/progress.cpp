@@ -19,8 +19,9 @@ void Progress::update(int done) {
         if (done < m_total && now - m_lastDraw < std::chrono::milliseconds(100))
             return;
         m_lastDraw = now;
-        std::fprintf(stderr, "\r%s %3d%% %d/%d steps, %.0f steps/s, ETA %.0fs   ", m_label.c_str(),
-                     percent, done, m_total, rate, eta);
+        std::fprintf(stderr, "\r%s %3d%% %d/%d steps, %.0f steps/s, ETA %.0fs%s%s   ",
+                     m_label.c_str(), percent, done, m_total, rate, eta, m_note.empty() ? "" : ", ",
+                     m_note.c_str());
         std::fflush(stderr);
         return;
     }
@@ -28,8 +29,8 @@ void Progress::update(int done) {
     if (decile == m_lastDecile)
         return;
     m_lastDecile = decile;
-    std::fprintf(stderr, "%s %3d%% %d/%d steps, %.0f steps/s\n", m_label.c_str(), percent, done,
-                 m_total, rate);
+    std::fprintf(stderr, "%s %3d%% %d/%d steps, %.0f steps/s%s%s\n", m_label.c_str(), percent, done,
+                 m_total, rate, m_note.empty() ? "" : ", ", m_note.c_str());
 }
 
 void Progress::finish(const std::string& summary) {

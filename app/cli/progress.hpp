@@ -12,11 +12,15 @@ class Progress {
 public:
     Progress(std::string label, int total);
     void update(int done);
+    // Text shown after the counts from the next update on (e.g. how close a
+    // pattern is to settled).
+    void setNote(std::string note) { m_note = std::move(note); }
     // Ends the line (terminal) and prints a summary.
     void finish(const std::string& summary);
 
 private:
     std::string m_label;
+    std::string m_note;
     int m_total;
     bool m_tty;
     int m_lastDecile = -1;

@@ -11,13 +11,16 @@
 #include "cli/progress.hpp"
 #include "cli/render_frames.hpp"
 #include "cli/render_output.hpp"
+#include "cli/settle_flags.hpp"
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/output/colormap.hpp"
 #include "core/session/session.hpp"
+#include "core/output/frames.hpp"
 #include "core/sim/runner.hpp"
+#include "core/sim/segments.hpp"
 #include "gl/backend.hpp"
 
 namespace morphogen::cli {
@@ -47,10 +50,13 @@ struct RenderFlags {
     std::string colormap;
     std::string chemical;
     std::string levels;
+    double scale = 1.0;
+    bool noCoarseToFine = false;
     int bitDepth = 8;
     GradientFlags gradient;
     TextureSetFlags textureSet;
     FrameFlags frames;
+    SettleFlags settle;
 };
 
 // An enumeration's name given to `flag`; throws InputError listing `accepted`.
@@ -113,6 +119,14 @@ Session buildSession(const RenderFlags& f) {
         throw InputError("--preset and --session are exclusive: give one");
     Session s = !f.sessionFile.empty() ? loadSessionFile(f.sessionFile)
                                        : loadPreset(f.preset.empty() ? kDefaultPreset : f.preset);
+    if (s.length <= 0 && !s.tiles.active()) {
+        // Written before sessions had a length: its rates are per cell at its own size.
+        s.length = s.width;
+        std::fprintf(stderr,
+                     "morphogen: %s has no \"length\": read as written for its own size, %d "
+                     "units wide (one per cell); other sizes keep that pattern\n",
+                     f.sessionFile.c_str(), s.width);
+    }
     if (!f.schedule.empty()) {
         if (!f.size.empty() || f.steps >= 0)
             throw InputError("--schedule sets the sizes and steps: drop --size and --steps");
@@ -122,8 +136,6 @@ Session buildSession(const RenderFlags& f) {
             throw InputError("--schedule does not combine with cascade \"stages\" (" +
                              std::to_string(s.stages.size()) +
                              " stages of their own steps): drop --schedule, or use --size");
-        if (s.length <= 0)
-            s.length = s.width; // the pattern keeps the scale it has at the session's own size
         applySchedule(s, parseSchedule(f.schedule));
     } else if (!s.schedule.empty() && (!f.size.empty() || f.steps >= 0)) {
         throw InputError("--size and --steps do not apply to a session with a coarse-to-fine "
@@ -133,6 +145,12 @@ Session buildSession(const RenderFlags& f) {
         parseSize(f.size, s);
     if (f.steps >= 0)
         applySteps(s, f.steps, "--steps");
+    if (!(f.scale > 0 && f.scale <= 1000))
+        throw InputError("--scale " + std::to_string(f.scale) +
+                         ": accepted are numbers in (0, 1000] (2: features twice as large)");
+    s.length /= f.scale;
+    if (f.noCoarseToFine)
+        s.coarseToFine = false;
     if (!f.integrator.empty())
         s.integrator = parseFlag("--integrator", f.integrator, parseIntegrator, integratorNames());
     if (f.relaxationPasses != -1) {
@@ -212,14 +230,23 @@ void render(const RenderFlags& flags) {
     if (f.frames.wanted())
         prepareFrames(f.frames, f.out, session);
 
+    SettleRun settle(f.settle, session, f.sessionFile.empty(), f.steps >= 0);
     checkStability(session);
+    const std::string plan = describePlan(session);
+    if (!plan.empty())
+        std::fprintf(stderr, "morphogen: %s\n", plan.c_str());
+    if (session.cellSize() > 2.0)
+        std::fprintf(stderr,
+                     "morphogen: warning: a cell is %.3g units wide: features designed a few "
+                     "units across are under-resolved; use a larger --size\n",
+                     session.cellSize());
     gl::Backend backend =
         gl::makeBackend(gl::parseBackendChoice(f.backend), gl::parseContextFlag(f.context),
                         gl::parseGpuDeviceFlag(f.gpuDevice));
     std::fprintf(stderr, "morphogen: %s\n", backend.reason.c_str());
 
     Progress progress("render " + (session.name.empty() ? std::string("session") : session.name),
-                      session.steps);
+                      sessionTotalSteps(session));
     RunResult result;
     {
         const InterruptGuard interrupt;
@@ -227,6 +254,7 @@ void render(const RenderFlags& flags) {
         options.progress = [&](int done, int) { progress.update(done); };
         options.cancel = interrupt.flag();
         options.chunk = runChunk(session);
+        settle.attach(options, progress);
         result = f.frames.wanted() ? renderFrames(session, backend.makeSimulator, options, f.frames)
                                    : runSession(session, backend.makeSimulator, options);
     }
@@ -237,6 +265,10 @@ void render(const RenderFlags& flags) {
     } else {
         progress.finish("done: " + std::to_string(result.stepsDone) + " steps");
     }
+    bool warning = false;
+    const std::string settled = settle.summary(result, warning);
+    if (!settled.empty())
+        std::fprintf(stderr, "morphogen: %s%s\n", warning ? "warning: " : "", settled.c_str());
 
     if (image) {
         writeRenderOutput(result, f.out, sessionOut, f.bitDepth);
@@ -268,7 +300,13 @@ void addRenderCommand(CLI::App& app) {
                     "needed unless --texture-set is given");
     cmd->add_option("--session-out", flags->sessionOut,
                     "where to write the session JSON (default: --out with .json)");
-    cmd->add_option("--size", flags->size, "grid size N or WxH");
+    cmd->add_option("--size", flags->size,
+                    "resolution N or WxH: the pattern stays the same, with more or less detail");
+    cmd->add_option("--scale", flags->scale,
+                    "make every feature this many times larger in the image (default 1)");
+    cmd->add_flag("--no-coarse-to-fine", flags->noCoarseToFine,
+                  "run every step at the full size (default: a size over twice the session's "
+                  "length runs its steps near one cell per unit, then refines)");
     cmd->add_option("--steps", flags->steps, "number of steps");
     cmd->add_option("--seed", flags->seed, "random seed of the initial condition");
     cmd->add_option("--dt", flags->dt, "time step");
@@ -296,6 +334,7 @@ void addRenderCommand(CLI::App& app) {
     addGradientFlags(*cmd, flags->gradient);
     addTextureSetFlags(*cmd, flags->textureSet);
     addFrameFlags(*cmd, flags->frames);
+    addSettleFlags(*cmd, flags->settle);
     cmd->callback([flags] { render(*flags); });
 }
 

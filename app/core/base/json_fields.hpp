@@ -84,6 +84,15 @@ public:
         return *value;
     }
 
+    bool boolean(const std::string& key, bool fallback) const {
+        const nlohmann::json* j = find(key);
+        if (!j)
+            return fallback;
+        if (!j->is_boolean())
+            failField(key, "must be true or false, got " + typeName(*j));
+        return j->get<bool>();
+    }
+
     double number(const std::string& key, double fallback, double min, double max) const {
         const nlohmann::json* j = find(key);
         if (!j)

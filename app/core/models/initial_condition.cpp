@@ -11,6 +11,7 @@
 
 #include "core/base/enum_names.hpp"
 #include "core/base/json_fields.hpp"
+#include "core/base/noise_field.hpp"
 #include "core/base/random.hpp"
 #include "core/models/reaction_model.hpp"
 
@@ -116,9 +117,11 @@ nlohmann::json initialConditionToJson(const InitialCondition& init) {
 
 State makeInitialState(const InitialCondition& init, const ReactionModel& model,
                        const std::map<std::string, float>& params, int width, int height,
-                       std::uint64_t seed) {
+                       std::uint64_t seed, double cellSize) {
     const int channels = int(model.chemicals().size());
     State state(width, height, channels);
+    // Radii and spacings are in model units: cells at one cell per unit.
+    const double cellsPerUnit = cellSize > 0 ? 1.0 / cellSize : 1.0;
 
     // Which cells take the `inside` values.
     std::vector<unsigned char> marked(state.cellCount(), 0);
@@ -139,7 +142,7 @@ State makeInitialState(const InitialCondition& init, const ReactionModel& model,
                 centres.emplace_back(uniform01(seed, 2000, 2 * s) * width,
                                      uniform01(seed, 2000, 2 * s + 1) * height);
         } else {
-            const double step = std::max(2.0f, init.spacing);
+            const double step = std::max(2.0, init.spacing * cellsPerUnit);
             const int rows = std::max(1, int(std::lround(2.0 * height / step)));
             const int columns = std::max(1, int(std::lround(width / step)));
             for (int j = 0; j < rows; ++j)
@@ -151,7 +154,7 @@ State makeInitialState(const InitialCondition& init, const ReactionModel& model,
                                          (j + 0.5) * height / double(rows) + dy);
                 }
         }
-        const float r = init.spotRadius;
+        const float r = float(init.spotRadius * cellsPerUnit);
         const int reach = int(std::ceil(r));
         for (const auto& [fx, fy] : centres) {
             const int cx = int(std::floor(fx)), cy = int(std::floor(fy));
@@ -167,20 +170,22 @@ State makeInitialState(const InitialCondition& init, const ReactionModel& model,
         }
     }
 
+    const NoiseField field(seed, width, height, cellSize, true);
     for (int c = 0; c < channels; ++c) {
         const std::string& name = model.chemicals()[std::size_t(c)].name;
         const float base = lookup(init.base, name, 0.0f);
         const float inside = lookup(init.inside, name, base);
         const float noise = lookup(init.noise, name, 0.0f);
         float* plane = state.plane(c);
-        for (std::size_t i = 0; i < state.cellCount(); ++i) {
-            const float value = marked[i] ? inside : base;
-            plane[i] = noise == 0.0f
-                           ? value
-                           : float(value + noise * uniformSigned(seed, std::uint64_t(c), i));
-        }
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const std::size_t i = std::size_t(y) * width + x;
+                const float value = marked[i] ? inside : base;
+                plane[i] = noise == 0.0f ? value
+                                         : float(value + noise * field.at(std::uint64_t(c), x, y));
+            }
     }
-    model.prepareState(state, params, seed);
+    model.prepareState(state, params, field);
     return state;
 }
 

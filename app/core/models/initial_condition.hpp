@@ -24,8 +24,8 @@ struct InitialCondition {
     std::map<std::string, float> inside;
     float squareFraction = 0.1f; // CentreSquare: side as a fraction of the grid's
     int spotCount = 10;          // SeedSpots
-    float spotRadius = 3.0f;     // SeedSpots and JitteredGrid, in cells
-    float spacing = 16.0f;       // JitteredGrid: lattice spacing in cells
+    float spotRadius = 3.0f;     // SeedSpots and JitteredGrid, in model units
+    float spacing = 16.0f;       // JitteredGrid: lattice spacing in model units
     float jitter = 0.25f;        // JitteredGrid: displacement, as a fraction of the spacing
 };
 
@@ -38,9 +38,13 @@ InitialCondition initialConditionFromJson(const nlohmann::json& json, const std:
                                           const std::string& path, const ReactionModel& model);
 nlohmann::json initialConditionToJson(const InitialCondition& init);
 
-// The initial state, a pure function of (condition, model, params, size, seed).
+// The initial state, a pure function of (condition, model, params, size,
+// seed, cell size). cellSize: model units per cell; the noise is a field in
+// model units (core/base/noise_field.hpp) and radii and spacings are in
+// units. 0: one unit per cell with a value drawn per cell (a session
+// without a length).
 State makeInitialState(const InitialCondition& init, const ReactionModel& model,
                        const std::map<std::string, float>& params, int width, int height,
-                       std::uint64_t seed);
+                       std::uint64_t seed, double cellSize = 0);
 
 } // namespace morphogen

@@ -52,7 +52,7 @@ std::vector<float> ReactionModel::packParams(const ParamValues& values) const {
     return packed;
 }
 
-void ReactionModel::prepareState(State&, const ParamValues&, std::uint64_t) const {}
+void ReactionModel::prepareState(State&, const ParamValues&, const NoiseField&) const {}
 
 namespace {
 template <class... Models> std::vector<const ReactionModel*> instances(ModelList<Models...>) {

@@ -14,6 +14,8 @@
 
 namespace morphogen {
 
+class NoiseField;
+
 struct ParamSpec {
     std::string name;
     float defaultValue = 0.0f;
@@ -107,8 +109,9 @@ public:
     virtual void react(const RowView& row, const float* params) const = 0;
 
     // Fills model-owned per-cell fields after the initial condition (Turk's
-    // beta = mean +- noise). The default does nothing.
-    virtual void prepareState(State& state, const ParamValues& values, std::uint64_t seed) const;
+    // beta = mean +- noise, from `noise`). The default does nothing.
+    virtual void prepareState(State& state, const ParamValues& values,
+                              const NoiseField& noise) const;
 
 protected:
     std::string m_name;

@@ -1,6 +1,6 @@
 #include "core/models/turing_turk.hpp"
 
-#include "core/base/random.hpp"
+#include "core/base/noise_field.hpp"
 #include "core/models/react_row.hpp"
 
 namespace morphogen {
@@ -30,13 +30,15 @@ void TuringTurkModel::react(const RowView& row, const float* p) const {
 }
 
 void TuringTurkModel::prepareState(State& state, const ParamValues& values,
-                                   std::uint64_t seed) const {
+                                   const NoiseField& field) const {
     const float mean = values.at("beta_mean");
     const float noise = values.at("beta_noise");
     float* beta = state.plane(2);
     // Stream 1000 keeps beta's noise independent of the chemicals' noise streams.
-    for (std::size_t i = 0; i < state.cellCount(); ++i)
-        beta[i] = float(mean + noise * uniformSigned(seed, 1000, i));
+    for (int y = 0; y < state.height(); ++y)
+        for (int x = 0; x < state.width(); ++x)
+            beta[std::size_t(y) * state.width() + x] =
+                float(mean + noise * field.at(1000, x, y));
 }
 
 } // namespace morphogen

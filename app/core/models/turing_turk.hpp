@@ -35,7 +35,8 @@ public:
 
     TuringTurkModel();
     void react(const RowView& row, const float* params) const override;
-    void prepareState(State& state, const ParamValues& values, std::uint64_t seed) const override;
+    void prepareState(State& state, const ParamValues& values,
+                      const NoiseField& noise) const override;
 };
 
 } // namespace morphogen

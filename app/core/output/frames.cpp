@@ -54,6 +54,7 @@ RunResult runWithFrames(const Session& session, const SimulatorFactory& makeSimu
                         const FrameSink& sink) {
     const int chunk = std::max(1, options.chunk);
     SessionRun run(session, makeSimulator, chunk);
+    run.setSettleCheck(options.settleEvery, options.settleAfter, options.settled);
     std::size_t next = 0;
     bool cancelled = false;
     while (next < steps.size() || !run.finished()) {
@@ -72,10 +73,11 @@ RunResult runWithFrames(const Session& session, const SimulatorFactory& makeSimu
             piece = std::min(piece, steps[next] - done);
         run.advance(piece);
         if (options.progress)
-            options.progress(run.position().stepsDone, session.steps);
+            options.progress(run.position().stepsDone, run.position().totalSteps);
     }
     RunResult result = run.result();
     result.cancelled = cancelled;
+    result.settled = run.settledEarly();
     return result;
 }
 

@@ -53,7 +53,8 @@ std::string toString(ParamMapSpec::Field field) {
 }
 
 std::vector<float> evaluateParamMap(const ParamMapSpec& spec, int width, int height,
-                                    std::uint64_t seed, const std::string& baseDir) {
+                                    std::uint64_t seed, const std::string& baseDir,
+                                    double cellSize) {
     std::vector<float> t(std::size_t(width) * height);
     if (spec.field == ParamMapSpec::Field::Image) {
         std::string path = spec.image;
@@ -61,8 +62,9 @@ std::vector<float> evaluateParamMap(const ParamMapSpec& spec, int width, int hei
             path = (std::filesystem::path(baseDir) / path).string();
         t = loadLuminance(path, width, height);
     } else {
-        const int cellsX = std::max(1, int(std::lround(width / spec.scale)));
-        const int cellsY = std::max(1, int(std::lround(height / spec.scale)));
+        const double units = cellSize > 0 ? cellSize : 1.0;
+        const int cellsX = std::max(1, int(std::lround(width * units / spec.scale)));
+        const int cellsY = std::max(1, int(std::lround(height * units / spec.scale)));
         const double halfDiagonal = 0.5 * std::hypot(width, height);
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {

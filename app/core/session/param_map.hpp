@@ -25,15 +25,17 @@ struct ParamMapSpec {
     Field field = Field::LinearX;
     float min = 0.0f;
     float max = 1.0f;
-    float scale = 16.0f;                  // Noise
+    float scale = 16.0f;                  // Noise: feature size in model units
     float centreX = 0.5f, centreY = 0.5f; // Radial
     std::string image;                    // Image (relative to the session's folder)
 };
 std::string toString(ParamMapSpec::Field field);
 
 // Per-cell values (row 0 at the top), a pure function of its inputs.
+// cellSize: model units per cell (0: one).
 std::vector<float> evaluateParamMap(const ParamMapSpec& spec, int width, int height,
-                                    std::uint64_t seed, const std::string& baseDir);
+                                    std::uint64_t seed, const std::string& baseDir,
+                                    double cellSize = 0);
 
 // Reads "param_maps" of a session: {"F": {"field": "linear_x", "range": [0.01, 0.1]}, ...};
 // values must lie in each parameter's accepted range.

@@ -291,7 +291,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
                        "jacobi_sweeps", "schedule",    "stages",
                        "param_maps",    "tiles",       "dt",
                        "steps",         "seed",        "init",
-                       "colormap",      "height",      "length"});
+                       "colormap",      "height",      "length",
+                       "coarse_to_fine"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");
@@ -304,6 +305,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
     s.params = paramsFromJson(top, *model);
     readSize(top, s);
     s.length = top.number("length", 0.0, 1e-3, 1e7);
+    s.coarseToFine = top.boolean("coarse_to_fine", s.coarseToFine);
     s.edges = top.choice("edges", s.edges, parseEdgeMode, edgeModeNames());
 
     // Like "init", a session's "diffusion" replaces the model's default whole.
@@ -355,6 +357,8 @@ json sessionToJson(const Session& s) {
     j["size"] = json::array({s.width, s.height});
     if (s.length > 0)
         j["length"] = s.length;
+    if (!s.coarseToFine)
+        j["coarse_to_fine"] = false;
     j["edges"] = toString(s.edges);
     j["diffusion"] = diffusionToJson(s.diffusion);
     j["integrator"] = toString(s.integrator);

@@ -77,6 +77,10 @@ struct Session {
     // Coarse-to-fine levels, coarsest first; the last must be width x height.
     // Empty: one level of `steps` at width x height.
     std::vector<ScheduleLevel> schedule;
+    // Without a schedule, a size at least twice the length runs the session
+    // at about one cell per unit and refines up to the size (segments.hpp);
+    // false runs every step at the size.
+    bool coarseToFine = true;
     // Turk's cascades: stages run in order (exclusive with a schedule); the
     // steps are their total. Empty: one stage of `steps`.
     std::vector<Stage> stages;
@@ -106,6 +110,10 @@ struct Session {
     // Model units per cell at width x height (h). A batched sweep's tiles and
     // an atlas run at one unit per cell.
     double cellSize() const;
+    // cellSize() for what is laid out in model units (start noise, spot
+    // radii, noise maps); 0 for a session without a length, whose start draws
+    // per cell as it always did.
+    double layoutCellSize() const { return length > 0 ? cellSize() : 0.0; }
     const ReactionModel& reactionModel() const; // asserts a known model
     // The model whose chemicals the final state holds: the last stage's that
     // changes model (a cascade such as Turk's giraffe), else reactionModel().

@@ -9,7 +9,7 @@ State initialState(const Session& session) {
     const ReactionModel& model = session.reactionModel();
     if (!session.tiles.active())
         return makeInitialState(session.init, model, session.params, session.width, session.height,
-                                session.seed);
+                                session.seed, session.layoutCellSize());
     State state(session.width, session.height, int(model.chemicals().size()));
     for (int row = 0; row < session.tiles.rows; ++row)
         for (int column = 0; column < session.tiles.columns; ++column) {

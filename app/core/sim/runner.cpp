@@ -50,6 +50,7 @@ RunResult runSession(const Session& session, const SimulatorFactory& makeSimulat
                      const RunOptions& options) {
     const int chunk = std::max(1, options.chunk);
     SessionRun run(session, makeSimulator, chunk);
+    run.setSettleCheck(options.settleEvery, options.settleAfter, options.settled);
     bool cancelled = false;
     while (!run.finished()) {
         if (options.cancel && options.cancel->load()) {
@@ -59,10 +60,11 @@ RunResult runSession(const Session& session, const SimulatorFactory& makeSimulat
         // One chunk, ending where the segment does: a blow-up check, then progress.
         run.advance(std::min(chunk, run.segmentRemaining()));
         if (options.progress)
-            options.progress(run.position().stepsDone, session.steps);
+            options.progress(run.position().stepsDone, run.position().totalSteps);
     }
     RunResult result = run.result();
     result.cancelled = cancelled;
+    result.settled = run.settledEarly();
     return result;
 }
 

@@ -15,11 +15,17 @@ struct RunOptions {
     std::function<void(int done, int total)> progress;
     // Set (e.g. by SIGINT) to stop after the current chunk.
     const std::atomic<bool>* cancel = nullptr;
+    // Until settled (SessionRun::setSettleCheck): asked every settleEvery
+    // session steps of the session's last stage or level, from settleAfter on.
+    int settleEvery = 0;
+    int settleAfter = 0;
+    std::function<bool(const State&)> settled;
 };
 
 struct RunResult {
     int stepsDone = 0;
     bool cancelled = false;
+    bool settled = false; // the settle check ended the run's last stage or level
     State state;
     // runSession: the session that reproduces `state` (on cancel: the steps
     // and schedule levels actually run).

@@ -15,49 +15,6 @@
 
 namespace morphogen {
 
-std::vector<Segment> segmentsOf(const Session& session) {
-    std::vector<Segment> segments;
-    Session base = session;
-    base.schedule.clear();
-    base.stages.clear();
-    if (!session.stages.empty()) {
-        for (const Stage& stage : session.stages) {
-            const bool newModel = !stage.model.empty();
-            if (newModel) {
-                // The new model starts from its own defaults, not the old model's values.
-                const ReactionModel& model = *findModel(stage.model);
-                base.model = stage.model;
-                base.params.clear();
-                for (const ParamSpec& p : model.params())
-                    base.params[p.name] = p.defaultValue;
-                base.init = stage.init ? *stage.init : model.defaultInit();
-                base.dt = model.defaultDt();
-                base.paramMaps.clear(); // sessionFromJson refuses maps with a model change
-            }
-            if (stage.dt)
-                base.dt = *stage.dt;
-            for (const auto& [name, value] : stage.params)
-                base.params[name] = value; // cumulative, as Turk's cascades change s
-            Segment segment{base, stage.freeze, stage.reset, newModel};
-            segment.session.steps = stage.steps;
-            segments.push_back(segment);
-        }
-        return segments;
-    }
-    std::vector<ScheduleLevel> levels = session.schedule;
-    if (levels.empty())
-        levels.push_back({session.width, session.height, session.steps});
-    for (const ScheduleLevel& level : levels) {
-        Segment segment{base, std::nullopt, {}, false};
-        segment.session.width = level.width;
-        segment.session.height = level.height;
-        segment.session.steps = level.steps;
-        segment.session.gridSpacing = double(session.width) / level.width;
-        segments.push_back(segment);
-    }
-    return segments;
-}
-
 SessionRun::SessionRun(const Session& session, SimulatorFactory makeSimulator, int checkEvery)
     : m_session(session), m_make(std::move(makeSimulator)), m_checkEvery(std::max(0, checkEvery)),
       m_segments(segmentsOf(session)), m_stateModel(&session.reactionModel()) {
@@ -73,15 +30,20 @@ void SessionRun::enterSegment(std::size_t i) {
     if (i == 0)
         m_state = initialState(part); // a tiled domain starts every tile on its own
 
-    else if (m_state.width() != part.width || m_state.height() != part.height)
+    else if (m_state.width() != part.width || m_state.height() != part.height) {
+        if (!m_frozen.empty())
+            m_frozen = resampleMask(m_frozen, m_state.width(), m_state.height(), part.width,
+                                    part.height);
         m_state = resampleBilinear(m_state, part.width, part.height, part.edges);
+    }
     // The rule reads the previous stage's result, with that stage's model.
     if (segment.freeze)
         m_frozen = applyFreezeRule(*segment.freeze, m_state, *m_stateModel, std::move(m_frozen));
     if (segment.newModel && i > 0) {
         // A new model: a fresh start of its own; only the frozen mask carries over.
         m_state =
-            makeInitialState(part.init, model, part.params, part.width, part.height, part.seed);
+            makeInitialState(part.init, model, part.params, part.width, part.height, part.seed,
+                              part.layoutCellSize());
         m_stateModel = &model;
     }
     if (!segment.reset.empty() && !m_frozen.empty())
@@ -125,6 +87,23 @@ void SessionRun::checkBlowUp(const State& state, int before) const {
     throw BlowUpError(os.str(), done, dt);
 }
 
+void SessionRun::setSettleCheck(int every, int after, std::function<bool(const State&)> settled) {
+    std::size_t own = 0;
+    while (own + 1 < m_segments.size() && !m_segments[own + 1].refine)
+        ++own;
+    const int substeps = m_segments[own].substeps;
+    m_settleEvery = settled ? std::max(0, every) * substeps : 0;
+    m_settleAfter = std::max(0, after) * substeps;
+    m_settled = std::move(settled);
+}
+
+bool SessionRun::inSettleSegment() const {
+    if (m_settleEvery <= 0 || m_finished)
+        return false;
+    const bool lastOwn = m_index + 1 == m_segments.size() || m_segments[m_index + 1].refine;
+    return lastOwn && !m_segments[m_index].refine;
+}
+
 int SessionRun::advance(int steps) {
     int run = 0;
     while (run < steps && !m_finished) {
@@ -134,18 +113,27 @@ int SessionRun::advance(int steps) {
         int n = std::min(steps - run, length - done);
         if (m_checkEvery > 0)
             n = std::min(n, m_checkEvery - done % m_checkEvery);
+        const bool settling = inSettleSegment();
+        if (settling)
+            n = std::min(n, m_settleEvery - done % m_settleEvery);
         m_simulator->run(n);
         m_stepsRun[m_index] += n;
         m_stepsDone += n;
         run += n;
         const int now = m_stepsRun[m_index];
         const bool end = now == length;
-        if (end || (m_checkEvery > 0 && now % m_checkEvery == 0)) {
+        const bool blowUpCheck = m_checkEvery > 0 && now % m_checkEvery == 0;
+        const bool settleCheck = settling && !end && now % m_settleEvery == 0;
+        if (end || blowUpCheck || settleCheck) {
             State state = m_simulator->state();
             const int before = m_checkEvery > 0 ? (now - 1) / m_checkEvery * m_checkEvery : 0;
             checkBlowUp(state, before);
-            if (end)
+            if (settleCheck && now >= m_settleAfter && m_settled(state)) {
+                m_settledEarly = true;
                 finishSegment(std::move(state));
+            } else if (end) {
+                finishSegment(std::move(state));
+            }
         }
     }
     return run;
@@ -175,14 +163,22 @@ State SessionRun::state() const {
 }
 
 Session SessionRun::completed() const {
-    // What reproduces this state: the segments run, with the steps they ran.
+    // What reproduces this state: the session's own segments with the steps
+    // they ran, in session steps. Refinement levels are not the session's:
+    // every run of it plans them again.
     Session done = m_session;
-    done.steps = m_stepsDone;
-    const std::size_t entered = m_stepsRun.size();
+    std::size_t own = 0;
+    while (own < m_segments.size() && !m_segments[own].refine)
+        ++own;
+    const std::size_t entered = std::min(m_stepsRun.size(), own);
+    auto sessionSteps = [&](std::size_t i) { return m_stepsRun[i] / m_segments[i].substeps; };
+    done.steps = 0;
+    for (std::size_t i = 0; i < entered; ++i)
+        done.steps += sessionSteps(i);
     if (!m_session.schedule.empty()) {
         done.schedule.resize(entered);
         for (std::size_t i = 0; i < entered; ++i)
-            done.schedule[i].steps = m_stepsRun[i];
+            done.schedule[i].steps = sessionSteps(i);
         if (done.schedule.back().width != m_session.width ||
             done.schedule.back().height != m_session.height)
             done.schedule.push_back({m_session.width, m_session.height, 0});
@@ -190,20 +186,20 @@ Session SessionRun::completed() const {
     if (!m_session.stages.empty()) {
         done.stages.resize(entered);
         for (std::size_t i = 0; i < entered; ++i) {
-            done.stages[i].steps = m_stepsRun[i];
+            done.stages[i].steps = sessionSteps(i);
             // Live changes: a value in force that differs from what the stage
             // would inherit is written into it.
             const Session& part = m_segments[i].session;
             ParamValues inherited = i == 0 ? m_session.params : m_segments[i - 1].session.params;
-            float inheritedDt = i == 0 ? m_session.dt : m_segments[i - 1].session.dt;
+            float inheritedDt = i == 0 ? m_session.dt : m_segments[i - 1].sessionDt;
             if (m_segments[i].newModel) {
                 inherited.clear();
                 for (const ParamSpec& p : part.reactionModel().params())
                     inherited[p.name] = p.defaultValue;
                 inheritedDt = part.reactionModel().defaultDt();
             }
-            if (part.dt != inheritedDt || done.stages[i].dt)
-                done.stages[i].dt = part.dt;
+            if (m_segments[i].sessionDt != inheritedDt || done.stages[i].dt)
+                done.stages[i].dt = m_segments[i].sessionDt;
             for (const auto& [name, value] : part.params) {
                 auto it = inherited.find(name);
                 if (it == inherited.end() || it->second != value ||
@@ -215,7 +211,7 @@ Session SessionRun::completed() const {
         // Levels share their parameters and dt (setParams/setDt change the
         // current level and those after it).
         done.params = segmentSession().params;
-        done.dt = segmentSession().dt;
+        done.dt = m_segments[m_index].sessionDt;
     }
     return done;
 }
@@ -254,8 +250,9 @@ void SessionRun::setParams(const ParamValues& params) {
         merged[name] = value;
     m_simulator->setParams(merged);
     part.params = merged;
-    if (m_session.stages.empty())
-        for (std::size_t i = m_index + 1; i < m_segments.size(); ++i)
+    // Later levels (and refinement, which continues the last stage) take it.
+    for (std::size_t i = m_index + 1; i < m_segments.size(); ++i)
+        if (m_session.stages.empty() || m_segments[i].refine)
             m_segments[i].session.params = merged;
 }
 
@@ -267,10 +264,14 @@ void SessionRun::setDt(float dt) {
     }
     if (m_finished)
         return;
-    m_simulator->setDt(dt);
+    // `dt` is a session dt: a segment finer than one cell per unit takes
+    // substeps of dt / substeps.
+    m_simulator->setDt(dt / float(m_segments[m_index].substeps));
     for (std::size_t i = m_index; i < m_segments.size(); ++i)
-        if (i == m_index || m_session.stages.empty())
-            m_segments[i].session.dt = dt;
+        if (i == m_index || m_session.stages.empty() || m_segments[i].refine) {
+            m_segments[i].sessionDt = dt;
+            m_segments[i].session.dt = dt / float(m_segments[i].substeps);
+        }
 }
 
 void SessionRun::replaceSession(const Session& session) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -8,19 +9,9 @@
 #include <vector>
 
 #include "core/sim/runner.hpp"
+#include "core/sim/segments.hpp"
 
 namespace morphogen {
-
-// One segment of a session: a schedule level or a cascade stage.
-struct Segment {
-    Session session; // its model, size, steps, params, dt and grid spacing
-    std::optional<FreezeRule> freeze;
-    std::map<std::string, float> reset;
-    bool newModel = false; // starts session.model afresh from session.init
-};
-
-// The segments a session runs, in order (one for a plain session).
-std::vector<Segment> segmentsOf(const Session& session);
 
 // Where a SessionRun is. At a boundary it reports the next segment at step 0
 // (that segment's freeze, reset or model change already applied).
@@ -58,6 +49,14 @@ public:
     void endSegment();
 
     bool finished() const { return m_finished; }
+
+    // Ends the session's last own segment (its last stage or level, before
+    // any refinement) early when `settled` says so: it is asked with the
+    // state every `every` session steps of that segment, from `after` session
+    // steps on. The segment's steps are then the cap. every 0: off.
+    void setSettleCheck(int every, int after, std::function<bool(const State&)> settled);
+    // Whether the settle check ended the segment.
+    bool settledEarly() const { return m_settledEarly; }
     RunPosition position() const;
     // Steps left in the current segment.
     int segmentRemaining() const;
@@ -97,6 +96,7 @@ public:
 private:
     void enterSegment(std::size_t index);
     void checkBlowUp(const State& state, int before) const;
+    bool inSettleSegment() const;
     void finishSegment(State state);
 
     Session m_session;
@@ -111,6 +111,10 @@ private:
     State m_state; // the state between segments (the simulator holds it inside one)
     std::vector<std::uint8_t> m_frozen;
     const ReactionModel* m_stateModel = nullptr; // the model m_state holds
+    int m_settleEvery = 0; // in steps of the settle segment (session steps x substeps)
+    int m_settleAfter = 0;
+    std::function<bool(const State&)> m_settled;
+    bool m_settledEarly = false;
 };
 
 } // namespace morphogen

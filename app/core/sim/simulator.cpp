@@ -50,7 +50,8 @@ void loadVaryingParams(StepConstants& k, const Session& session, Session& unitRa
     k.paramMaps = State(session.width, session.height, int(varying));
     for (const auto& [name, spec] : session.paramMaps) {
         const std::vector<float> values =
-            evaluateParamMap(spec, session.width, session.height, session.seed, session.baseDir);
+            evaluateParamMap(spec, session.width, session.height, session.seed, session.baseDir,
+                             session.layoutCellSize());
         std::copy(values.begin(), values.end(), addMappedParam(k, model, name, unitRates));
     }
     if (!k.tiled())

@@ -1,11 +1,13 @@
 #include "core/sim/stability_check.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
 #include "core/operators/stability.hpp"
 #include "core/sim/runner.hpp"
+#include "core/sim/segments.hpp"
 #include "core/sim/simulator.hpp"
 
 namespace morphogen {
@@ -19,12 +21,15 @@ template <typename... Args> std::string format(const char* pattern, Args... args
 }
 
 // The explicit step's stability for one segment: sets report.refused for an
-// operator that grows for every dt; returns the dt to use (capped, with a
-// warning, when `dt` is above the limit). `what` names the segment in messages.
-float checkExplicitStep(const Session& segment, const std::string& what, bool verbose,
+// operator that grows for every dt; returns the session dt to use (capped,
+// with a warning, when the segment's dt is above its limit). Values are
+// session dts: a segment of substeps runs dt / substeps. `what` names the
+// segment in messages.
+float checkExplicitStep(const Segment& segment, const std::string& what, bool verbose,
                         StabilityReport& report) {
-    const ExplicitStability st =
-        explicitStability(compileDiffusion(segment), segment.domain(), segment.dt);
+    const Session& part = segment.session;
+    const double k = segment.substeps;
+    const ExplicitStability st = explicitStability(compileDiffusion(part), part.domain(), part.dt);
     if (!st.maxStableDt) {
         std::ostringstream os;
         os << what
@@ -34,37 +39,45 @@ float checkExplicitStep(const Session& segment, const std::string& what, bool ve
            << "); set \"stabilize\": true in its diffusion block, or use --integrator "
               "semi_implicit";
         report.refused = os.str();
-        return segment.dt;
+        return segment.sessionDt;
     }
-    if (segment.dt > *st.maxStableDt) {
-        const float capped = float(0.9 * *st.maxStableDt);
+    const double limit = *st.maxStableDt * k;
+    const std::string steps =
+        segment.substeps > 1 ? format(" (%d steps of dt/%d)", segment.substeps, segment.substeps)
+                             : std::string();
+    if (part.dt > *st.maxStableDt) {
+        const float capped = float(0.9 * limit);
         report.notes.push_back(
-            {true, format("%sdt %g exceeds the explicit stability limit %.4g (%s); capped to %.4g",
-                          what.c_str(), double(segment.dt), *st.maxStableDt, st.basis.c_str(),
-                          double(capped))});
+            {true, format("%sdt %g exceeds the explicit stability limit %.4g%s (%s); capped to %.4g",
+                          what.c_str(), double(segment.sessionDt), limit, steps.c_str(),
+                          st.basis.c_str(), double(capped))});
         report.capped = true;
         return capped;
     }
     if (!st.exact && verbose)
         report.notes.push_back(
-            {false, format("%sexplicit step: dt %g within the %s (largest stable dt %.4g)",
-                           what.c_str(), double(segment.dt), st.basis.c_str(), *st.maxStableDt)});
+            {false, format("%sexplicit step: dt %g within the %s (largest stable dt %.4g%s)",
+                           what.c_str(), double(segment.sessionDt), st.basis.c_str(), limit,
+                           steps.c_str())});
     if (st.exact && verbose)
         report.notes.push_back(
             {false, format("%sexplicit step: spectral radius of I + dt A = %.4f at dt %g (largest "
-                           "stable dt %.4g)",
-                           what.c_str(), st.spectralRadius, double(segment.dt), *st.maxStableDt)});
-    return segment.dt;
+                           "stable dt %.4g%s)",
+                           what.c_str(), st.spectralRadius, double(segment.sessionDt), limit,
+                           steps.c_str())});
+    return segment.sessionDt;
 }
 
 } // namespace
 
 StabilityReport checkSessionStability(Session& session, bool verbose) {
     StabilityReport report;
+    const std::vector<Segment> segments = segmentsOf(session);
     if (session.integrator == Integrator::SemiImplicit) {
         if (!verbose)
             return report;
-        const StepConstants k = StepConstants::fromSession(session);
+        // The finest segment's operator is the stiffest.
+        const StepConstants k = StepConstants::fromSession(segments.back().session);
         report.notes.push_back(
             {false, format("semi-implicit step: %d relaxation passes, residual factor %.3g per "
                            "sweep (%.2g per step) from the operator's symbol",
@@ -73,22 +86,31 @@ StabilityReport checkSessionStability(Session& session, bool verbose) {
         return report;
     }
     if (session.stages.empty()) {
-        session.dt = checkExplicitStep(session, "", verbose, report);
+        // Levels share the session's dt: the lowest limit over them caps it.
+        // The finest level is the one reported.
+        float dt = session.dt;
+        for (std::size_t i = 0; i < segments.size() && !report.refused; ++i) {
+            const bool last = i + 1 == segments.size();
+            dt = std::min(dt, checkExplicitStep(segments[i], "", verbose && last, report));
+        }
+        session.dt = dt;
         return report;
     }
-    for (std::size_t i = 0; i < session.stages.size(); ++i) {
-        const Session stage = segmentSessions(session)[i];
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        const Segment& segment = segments[i];
+        // A refinement level continues the last stage.
+        const std::size_t stage = std::min(i, session.stages.size() - 1);
         const std::string what =
-            session.stages.size() > 1 ? "stage " + std::to_string(i + 1) + ": " : "";
-        const float dt = checkExplicitStep(stage, what, verbose, report);
+            session.stages.size() > 1 ? "stage " + std::to_string(stage + 1) + ": " : "";
+        const float dt = checkExplicitStep(segment, what, verbose && !segment.refine, report);
         if (report.refused)
             break;
-        if (dt == stage.dt)
+        if (dt == segment.sessionDt)
             continue;
-        if (i == 0 && !session.stages[0].dt)
-            session.dt = dt;
+        if (stage == 0 && !session.stages[0].dt)
+            session.dt = std::min(session.dt, dt);
         else
-            session.stages[i].dt = dt;
+            session.stages[stage].dt = std::min(session.stages[stage].dt.value_or(dt), dt);
     }
     return report;
 }

@@ -59,6 +59,7 @@ Session tileSession(const Session& batched, int column, int row) {
     s.width = batched.width / batched.tiles.columns;
     s.height = batched.height / batched.tiles.rows;
     s.tiles = TileGrid{};
+    s.length = 0; // tiles run at one unit per cell
     for (const auto& [name, values] : batched.tiles.params)
         s.params[name] = batched.tiles.value(name, column, row);
     return s;

@@ -1,0 +1,175 @@
+#include "core/sim/segments.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+
+#include "core/base/errors.hpp"
+
+namespace morphogen {
+
+namespace {
+
+// A level's cell size in model units.
+double cellSizeAt(const Session& session, int width) {
+    if (session.length > 0 && !session.tiles.active() && !session.atlas)
+        return session.length / width;
+    return double(session.width) / width; // legacy: the finest level has one unit per cell
+}
+
+// Steps per session step at cell size h: explicit steps keep dt within the
+// stability limit, which scales as h^2; the semi-implicit step's diffusion is
+// implicit, so it keeps its dt.
+int substepsAt(const Session& session, double h) {
+    if (session.integrator != Integrator::ExplicitEuler || h >= 1.0)
+        return 1;
+    return int(std::ceil(1.0 / (h * h) - 1e-9));
+}
+
+int scaledSteps(long long steps, int substeps, int width, int height) {
+    const long long n = steps * substeps;
+    if (n > INT_MAX)
+        throw InputError("at " + std::to_string(width) + " x " + std::to_string(height) +
+                         " the session's " + std::to_string(steps) + " steps take " +
+                         std::to_string(n) + " steps of dt/" + std::to_string(substeps) +
+                         ", more than the engine runs in one go: use fewer steps or a smaller "
+                         "size");
+    return int(n);
+}
+
+// Sets a segment's size, grid spacing, dt and steps for `sessionSteps`.
+void place(Segment& segment, const Session& session, int width, int height, int sessionSteps) {
+    Session& s = segment.session;
+    s.width = width;
+    s.height = height;
+    s.gridSpacing = cellSizeAt(session, width);
+    segment.substeps = substepsAt(session, s.gridSpacing);
+    segment.sessionDt = s.dt;
+    s.dt = float(double(s.dt) / segment.substeps);
+    s.steps = scaledSteps(sessionSteps, segment.substeps, width, height);
+}
+
+} // namespace
+
+int refineSteps(float dt) {
+    // About 40 time units (a few reaction times of the presets' models), at
+    // least 20 steps.
+    const double time = 40.0;
+    return std::max(20, int(std::lround(time / dt)));
+}
+
+ResolutionPlan planResolution(const Session& session) {
+    ResolutionPlan plan{session.width, session.height, {}};
+    if (session.length <= 0 || !session.coarseToFine || !session.schedule.empty() ||
+        session.tiles.active() || session.atlas)
+        return plan;
+    int halvings = 0;
+    while (session.width / double(1 << (halvings + 1)) >= session.length &&
+           session.height >> (halvings + 1) >= 8)
+        ++halvings;
+    if (halvings == 0)
+        return plan;
+    auto sizeAt = [&](int k) {
+        const double f = double(1 << k);
+        return std::pair<int, int>{std::max(1, int(std::lround(session.width / f))),
+                                   std::max(1, int(std::lround(session.height / f)))};
+    };
+    std::tie(plan.baseWidth, plan.baseHeight) = sizeAt(halvings);
+    for (int k = halvings - 1; k >= 0; --k) {
+        const auto [w, h] = sizeAt(k);
+        plan.refine.push_back({w, h, 0});
+    }
+    return plan;
+}
+
+std::vector<Segment> segmentsOf(const Session& session) {
+    const ResolutionPlan plan = planResolution(session);
+    std::vector<Segment> segments;
+    Session base = session;
+    base.schedule.clear();
+    base.stages.clear();
+    if (!session.stages.empty()) {
+        for (const Stage& stage : session.stages) {
+            const bool newModel = !stage.model.empty();
+            if (newModel) {
+                // The new model starts from its own defaults, not the old model's values.
+                const ReactionModel& model = *findModel(stage.model);
+                base.model = stage.model;
+                base.params.clear();
+                for (const ParamSpec& p : model.params())
+                    base.params[p.name] = p.defaultValue;
+                base.init = stage.init ? *stage.init : model.defaultInit();
+                base.dt = model.defaultDt();
+                base.paramMaps.clear(); // sessionFromJson refuses maps with a model change
+            }
+            if (stage.dt)
+                base.dt = *stage.dt;
+            for (const auto& [name, value] : stage.params)
+                base.params[name] = value; // cumulative, as Turk's cascades change s
+            Segment segment{base, stage.freeze, stage.reset, newModel};
+            place(segment, session, plan.baseWidth, plan.baseHeight, stage.steps);
+            segments.push_back(segment);
+        }
+    } else {
+        std::vector<ScheduleLevel> levels = session.schedule;
+        if (levels.empty())
+            levels.push_back({plan.baseWidth, plan.baseHeight, session.steps});
+        for (const ScheduleLevel& level : levels) {
+            Segment segment{base, std::nullopt, {}, false};
+            place(segment, session, level.width, level.height, level.steps);
+            segments.push_back(segment);
+        }
+    }
+    // Refinement continues the last segment's model, parameters and dt.
+    for (const ScheduleLevel& level : plan.refine) {
+        Segment segment{segments.back().session, std::nullopt, {}, false};
+        segment.session.dt = segments.back().sessionDt;
+        place(segment, session, level.width, level.height,
+              refineSteps(segments.back().sessionDt));
+        segment.refine = true;
+        segments.push_back(segment);
+    }
+    return segments;
+}
+
+std::string describePlan(const Session& session) {
+    if (session.length <= 0 || session.tiles.active() || session.atlas)
+        return {};
+    const std::vector<Segment> segments = segmentsOf(session);
+    auto size = [](const Session& s) {
+        return std::to_string(s.width) + " x " + std::to_string(s.height);
+    };
+    auto steps = [](const Segment& s) {
+        std::string text = std::to_string(s.session.steps) + " steps";
+        if (s.substeps > 1)
+            text += " of dt/" + std::to_string(s.substeps);
+        return text;
+    };
+    std::ostringstream os;
+    os << size(session) << " is " << session.length << " units wide (" << session.cellSize()
+       << " per cell)";
+    const Segment& first = segments.front();
+    const bool refines = segments.back().refine;
+    if (!refines && first.substeps == 1 && session.cellSize() == 1.0)
+        return {};
+    if (refines) {
+        std::size_t own = 0;
+        long long ownSteps = 0;
+        for (; own < segments.size() && !segments[own].refine; ++own)
+            ownSteps += segments[own].session.steps;
+        os << "; coarse-to-fine: the session's steps at " << size(first.session) << " ("
+           << ownSteps << " steps" << (first.substeps > 1 ? " of dt/" + std::to_string(first.substeps) : "")
+           << "), then refined at";
+        for (std::size_t i = own; i < segments.size(); ++i)
+            os << (i == own ? " " : ", ") << size(segments[i].session) << " (" << steps(segments[i])
+               << ")";
+    } else if (first.substeps > 1) {
+        os << "; every step runs as " << first.substeps << " steps of dt/" << first.substeps
+           << " (the explicit limit shrinks with the cell size squared)";
+    }
+    return os.str();
+}
+
+} // namespace morphogen
