@@ -8,6 +8,7 @@
 #include "cli/colour_flags.hpp"
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
+#include "cli/knob_flags.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_frames.hpp"
 #include "cli/render_output.hpp"
@@ -53,6 +54,7 @@ struct RenderFlags {
     double scale = 1.0;
     bool noCoarseToFine = false;
     int bitDepth = 8;
+    KnobFlags knobs;
     GradientFlags gradient;
     TextureSetFlags textureSet;
     FrameFlags frames;
@@ -167,6 +169,8 @@ Session buildSession(const RenderFlags& f) {
         throw InputError("--dt must be positive");
     for (const std::string& p : f.params)
         applyParamOverride(s, p);
+    for (const std::string& note : applyKnobFlags(f.knobs, s))
+        std::fprintf(stderr, "morphogen: %s\n", note.c_str());
     if (!f.edges.empty())
         s.edges = parseFlag("--edges", f.edges, parseEdgeMode, edgeModeNames());
     if (!f.stencil.empty()) {
@@ -331,6 +335,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--levels", flags->levels,
                     "LOW:HIGH window on the min-max normalised value (default 0:1)");
     cmd->add_option("--bit-depth", flags->bitDepth, "8 or 16 bits per channel for PNG/TIFF");
+    addKnobFlags(*cmd, flags->knobs);
     addGradientFlags(*cmd, flags->gradient);
     addTextureSetFlags(*cmd, flags->textureSet);
     addFrameFlags(*cmd, flags->frames);
