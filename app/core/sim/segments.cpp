@@ -53,11 +53,12 @@ void place(Segment& segment, const Session& session, int width, int height, int 
 
 } // namespace
 
-int refineSteps(float dt) {
-    // About 40 time units (a few reaction times of the presets' models), at
-    // least 20 steps.
-    const double time = 40.0;
-    return std::max(20, int(std::lround(time / dt)));
+int refineSteps() {
+    // What a level must correct is the resampling's error, at the scale of
+    // its cells: diffusion evens that out in a fixed number of the level's
+    // own steps, whatever the cell size (the pattern's shape came from the
+    // base). A fixed count keeps refinement's cost in proportion to the cells.
+    return 160;
 }
 
 ResolutionPlan planResolution(const Session& session) {
@@ -126,8 +127,8 @@ std::vector<Segment> segmentsOf(const Session& session) {
     for (const ScheduleLevel& level : plan.refine) {
         Segment segment{segments.back().session, std::nullopt, {}, false};
         segment.session.dt = segments.back().sessionDt;
-        place(segment, session, level.width, level.height,
-              refineSteps(segments.back().sessionDt));
+        place(segment, session, level.width, level.height, 0);
+        segment.session.steps = refineSteps(); // steps of the level's own dt
         segment.refine = true;
         segments.push_back(segment);
     }

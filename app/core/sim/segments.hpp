@@ -18,19 +18,18 @@ namespace morphogen {
 // session's own steps at a base size of about one cell per unit and then
 // refines: short runs at each doubling up to the size, each from the
 // previous one resampled (coarse-to-fine), so a 4x larger image costs about
-// the cells, not the cells times the steps.
+// the cells, not the cells times the steps. The refined image is the base's
+// pattern at more detail: the layout is decided at the base.
 struct ResolutionPlan {
     int baseWidth = 0; // where the session's steps (or stages) run
     int baseHeight = 0;
-    // Finer levels the engine adds, coarsest first (their steps are
-    // segmentsOf's: refineSteps at the last segment's dt). Empty: the base
-    // is the session's size.
+    // Finer levels the engine adds, coarsest first, each of refineSteps()
+    // steps. Empty: the base is the session's size.
     std::vector<ScheduleLevel> refine;
 };
 
-// Session steps run at each refinement level: enough simulated time for
-// interfaces to relax to the finer grid, a small part of a pattern's growth.
-int refineSteps(float dt);
+// Steps (of the level's own dt) run at each refinement level.
+int refineSteps();
 
 // The plan for `session`: refinement only for a grid session with a length,
 // no schedule of its own, coarseToFine set and a size at least twice its
