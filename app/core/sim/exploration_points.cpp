@@ -27,7 +27,7 @@ std::string formatValue(double v) {
     return buffer;
 }
 
-// A value read off an axis may be a tick label's rounding of an end.
+// Within the axis, with slack for float rounding at its ends.
 bool onAxis(float value, const SweepAxis& axis) {
     const float slack = 1e-6f * (axis.max - axis.min);
     return value >= axis.min - slack && value <= axis.max + slack;
