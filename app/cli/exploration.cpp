@@ -1,6 +1,7 @@
 #include "cli/exploration.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -67,6 +68,46 @@ void keepSeedSpotDensity(Session& s, int side, bool fromPreset) {
     const Session defaults; // the grid a model's default start is made for
     s.init.spotCount = std::max(1, int(double(s.init.spotCount) * side * side /
                                        (double(defaults.width) * defaults.height)));
+}
+
+ExplorationStart parseStartFlag(const std::string& text) {
+    if (const std::optional<ExplorationStart> start = parseExplorationStart(text))
+        return *start;
+    throw InputError("--start '" + text + "' is unknown (accepted: " + explorationStartNames() +
+                     ")" + didYouMean(text, splitNameList(explorationStartNames())));
+}
+
+void useStart(Session& s, ExplorationStart start, int side, bool fromPreset) {
+    if (start == ExplorationStart::Noise)
+        s.init = noiseStart(s.init, s.reactionModel());
+    else
+        keepSeedSpotDensity(s, side, fromPreset);
+}
+
+std::string startDescription(ExplorationStart start) {
+    return start == ExplorationStart::Noise
+               ? "noise start (perturbations over the whole area: the pattern each point "
+                 "settles to)"
+               : "preset start (the preset's or model's own start: growth fronts from its seeds)";
+}
+
+void checkPickSize(int size) {
+    if (size < 16 || size > kMaxGridSide)
+        throw InputError("--pick-size " + std::to_string(size) + ": accepted are 16.." +
+                         std::to_string(kMaxGridSide) + " cells");
+}
+
+void writePick(const Session& picked, const std::string& path, const std::string& what,
+               const SweepAxis& x, const SweepAxis& y) {
+    saveSessionFile(picked, path);
+    std::printf("picked %s: %s = %g, %s = %g\n", what.c_str(), x.param.c_str(),
+                double(picked.params.at(x.param)), y.param.c_str(),
+                double(picked.params.at(y.param)));
+    std::printf("%s\n", path.c_str());
+    std::fprintf(stderr,
+                 "morphogen: wrote %s (%d x %d cells, %d steps); render it with: morphogen render "
+                 "--session %s --out picked.png\n",
+                 path.c_str(), picked.width, picked.height, picked.steps, path.c_str());
 }
 
 } // namespace morphogen::cli

@@ -41,6 +41,10 @@ struct MapFlags {
     std::string gpuDevice;
     std::string colormap;
     std::string edges = "clamped";
+    std::string start = "preset";
+    std::string pick;
+    std::string pickOut;
+    int pickSize = 256;
 };
 
 // Ticks at "nice" values of a parameter swept over `cells` cells: cell i holds
@@ -59,6 +63,7 @@ PlotAxis linearAxis(const SweepAxis& axis, int cells, int maxTicks, bool upwards
 struct MapPlan {
     Session session;
     SweepAxis x, y;
+    EdgeMode ownEdges = EdgeMode::Periodic; // the preset's or model's, for a picked point
 };
 
 // Reads and checks the flags; throws InputError before anything runs.
@@ -74,8 +79,14 @@ MapPlan planMap(const MapFlags& f) {
     if (f.size < 16 || f.size > kMaxGridSide)
         throw InputError("--size " + std::to_string(f.size) + ": accepted are 16.." +
                          std::to_string(kMaxGridSide));
-    keepSeedSpotDensity(s, f.size, !f.preset.empty());
+    const ExplorationStart start = parseStartFlag(f.start);
+    useStart(s, start, f.size, !f.preset.empty());
+    s.description = "map of " + plan.x.param + " x " + plan.y.param + " from " +
+                    (f.preset.empty() ? "model " + f.model : "preset " + f.preset) + ", " +
+                    startDescription(start);
     s.width = s.height = f.size;
+    s.length = 0; // one unit per cell: the map shows the presets' design scale
+    plan.ownEdges = s.edges;
     // Periodic edges would join the two ends of each swept range, coupling unrelated parameter
     // values into an artefact strip along the borders; zero-flux edges keep each end to itself.
     const std::optional<EdgeMode> edges = parseEdgeMode(f.edges);
@@ -129,8 +140,40 @@ void writeMapPlot(const std::string& path, const MapPlan& plan, const RunResult&
     writeRgbImage(path, plot.canvas.rgb, plot.canvas.width, plot.canvas.height, 8);
 }
 
+std::string formatValue(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", v);
+    return buffer;
+}
+
+// --pick: the point's values are known without running the map, so only the session is written.
+void pick(const MapFlags& f, const MapPlan& plan) {
+    const PointPick point = parsePointPick("--pick", f.pick, plan.x, plan.y);
+    checkPickSize(f.pickSize);
+    Session picked = pickPoint(plan.session, plan.x, plan.y, point, f.pickSize);
+    // The map's clamped edges only keep the ends of its axes apart; one point tiles.
+    picked.edges = plan.ownEdges;
+    const std::string values = plan.x.param + " " + formatValue(point.x) + ", " + plan.y.param +
+                               " " + formatValue(point.y);
+    picked.name = "map_pick";
+    picked.description = picked.model + " at " + values +
+                         ": a point of the map, uniformly, at the map's scale; " +
+                         startDescription(parseStartFlag(f.start));
+    std::string path = f.pickOut;
+    if (path.empty()) {
+        std::filesystem::path p(f.out);
+        p.replace_filename(p.stem().string() + "_pick_" + plan.x.param + formatValue(point.x) +
+                           "_" + plan.y.param + formatValue(point.y) + ".json");
+        path = p.string();
+    }
+    writePick(picked, path, "the map's point " + formatValue(point.x) + "," + formatValue(point.y),
+              plan.x, plan.y);
+}
+
 void map(const MapFlags& f) {
     const MapPlan plan = planMap(f);
+    if (!f.pick.empty())
+        return pick(f, plan);
     const Session& s = plan.session;
     gl::Backend backend =
         gl::makeBackend(gl::parseBackendChoice(f.backend), gl::parseContextFlag(f.context),
@@ -176,6 +219,18 @@ void addMapCommand(CLI::App& app) {
     cmd->add_option(
         "--edges", flags->edges,
         "clamped (zero-flux, the default: the ends of the axes stay apart) or periodic");
+    cmd->add_option("--start", flags->start,
+                    "preset (default: the preset's or model's own start, e.g. Gray-Scott's seed "
+                    "spots: growth fronts, as Pearson's map) or noise (every point shows the "
+                    "pattern it settles to)");
+    cmd->add_option("--pick", flags->pick,
+                    "X,Y (values of the x and y parameters, as the axes show them): write the "
+                    "session of that point at full size instead of running the map");
+    cmd->add_option("--pick-out", flags->pickOut,
+                    "where --pick writes the session (default: next to --out, "
+                    "OUT_pick_XPARAMX_YPARAMY.json)");
+    cmd->add_option("--pick-size", flags->pickSize,
+                    "--pick's session size in cells, at the map's scale (default 256)");
     cmd->callback([flags] { map(*flags); });
 }
 

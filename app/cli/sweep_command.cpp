@@ -45,6 +45,10 @@ struct SweepFlags {
     std::string context;
     std::string gpuDevice;
     bool compare = false;
+    std::string start = "noise";
+    std::string pick;
+    std::string pickOut;
+    int pickSize = 256;
 };
 
 void parseGrid(const std::string& text, int& columns, int& rows) {
@@ -109,7 +113,8 @@ void writeSheet(const std::string& path, const SweepSpec& spec, const std::vecto
 }
 
 void writeStats(const std::filesystem::path& dir, const SweepSpec& spec,
-                const std::vector<TileResult>& results, int steps, const std::string& backend) {
+                const std::vector<TileResult>& results, int steps, const std::string& backend,
+                const std::string& start) {
     std::ofstream csv(dir / "stats.csv");
     csv << "column,row,x_value,y_value,mean,variance,dominant_wavelength,feature_count,"
            "orientation_strength,class\n";
@@ -137,6 +142,7 @@ void writeStats(const std::filesystem::path& dir, const SweepSpec& spec,
                         {"y", {{"param", spec.y.param}, {"min", spec.y.min}, {"max", spec.y.max}}},
                         {"grid", {spec.columns, spec.rows}},
                         {"tile", spec.tile},
+                        {"start", start},
                         {"steps", steps},
                         {"backend", backend},
                         {"tiles", tiles}};
@@ -184,8 +190,13 @@ SweepSpec sweepSpec(const SweepFlags& f) {
         throw InputError("--grid " + f.grid + " of --tile " + std::to_string(f.tile) + " exceeds " +
                          std::to_string(kMaxGridSide) + " cells per side");
     Session& base = spec.base;
-    keepSeedSpotDensity(base, f.tile, !f.preset.empty());
+    const ExplorationStart start = parseStartFlag(f.start);
+    useStart(base, start, f.tile, !f.preset.empty());
+    base.description = "sweep of " + spec.x.param + " x " + spec.y.param + " from " +
+                       (f.preset.empty() ? "model " + f.model : "preset " + f.preset) + ", " +
+                       startDescription(start);
     base.width = base.height = spec.tile;
+    base.length = 0; // one unit per cell: the tiles show the presets' design scale
     base.schedule.clear();
     base.stages.clear();
     base.paramMaps.clear();
@@ -250,14 +261,42 @@ std::vector<TileResult> measureTiles(const SweepSpec& spec, const std::vector<St
     return results;
 }
 
-void sweep(const SweepFlags& f) {
-    const SweepSpec spec = sweepSpec(f);
-    const Session batched = batchedSession(spec);
-    const std::filesystem::path dir(f.out);
+std::filesystem::path outputFolder(const std::string& out) {
+    const std::filesystem::path dir(out);
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec || !std::filesystem::is_directory(dir))
-        throw InputError("--out '" + f.out + "' cannot be created as a folder");
+        throw InputError("--out '" + out + "' cannot be created as a folder");
+    return dir;
+}
+
+// --pick: the tile's values are known without running the sweep, so only the session is written.
+void pick(const SweepFlags& f, const SweepSpec& spec) {
+    const TilePick tile = parseTilePick("--pick", f.pick, spec.columns, spec.rows);
+    checkPickSize(f.pickSize);
+    Session picked = pickTile(batchedSession(spec), tile, f.pickSize);
+    const std::string where = "column " + std::to_string(tile.column) + ", row " +
+                              std::to_string(tile.row) + " of the " + std::to_string(spec.columns) +
+                              "x" + std::to_string(spec.rows) + " grid";
+    picked.name = "sweep_pick";
+    picked.description = picked.model + " at " + spec.x.param + " " +
+                         formatValue(picked.params.at(spec.x.param)) + ", " + spec.y.param + " " +
+                         formatValue(picked.params.at(spec.y.param)) + ": sweep tile " + where +
+                         ", at the tile's scale; " + startDescription(parseStartFlag(f.start));
+    const std::string path =
+        !f.pickOut.empty() ? f.pickOut
+                           : (outputFolder(f.out) / ("pick_" + std::to_string(tile.column) + "_" +
+                                                     std::to_string(tile.row) + ".json"))
+                                 .string();
+    writePick(picked, path, where, spec.x, spec.y);
+}
+
+void sweep(const SweepFlags& f) {
+    const SweepSpec spec = sweepSpec(f);
+    if (!f.pick.empty())
+        return pick(f, spec);
+    const Session batched = batchedSession(spec);
+    const std::filesystem::path dir = outputFolder(f.out);
     checkWritable((dir / "sheet.png").string());
 
     gl::Backend backend =
@@ -286,7 +325,8 @@ void sweep(const SweepFlags& f) {
         compareOneByOne(batched, backend.makeSimulator, backendName, tiles, mainSeconds);
 
     writeSheet((dir / "sheet.png").string(), spec, tiles, batched.steps);
-    writeStats(dir, spec, measureTiles(spec, tiles), batched.steps, backendName);
+    writeStats(dir, spec, measureTiles(spec, tiles), batched.steps, backendName,
+               toString(parseStartFlag(f.start)));
     saveSessionFile(batched, (dir / "session.json").string());
     std::printf("%s\n", dir.string().c_str());
 }
@@ -314,6 +354,16 @@ void addSweepCommand(CLI::App& app) {
         "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
     cmd->add_flag("--compare-one-by-one", flags->compare,
                   "also time the same tiles run one by one on the same backend");
+    cmd->add_option("--start", flags->start,
+                    "noise (default: every tile shows the pattern it settles to) or preset (the "
+                    "preset's or model's own start, e.g. Gray-Scott's seed spots)");
+    cmd->add_option("--pick", flags->pick,
+                    "COL,ROW (from 0; row 0 at the bottom, as in stats.csv): write that tile's "
+                    "session at full size instead of running the sweep");
+    cmd->add_option("--pick-out", flags->pickOut,
+                    "where --pick writes the session (default OUT/pick_COL_ROW.json)");
+    cmd->add_option("--pick-size", flags->pickSize,
+                    "--pick's session size in cells, at the tile's scale (default 256)");
     cmd->callback([flags] { sweep(*flags); });
 }
 
