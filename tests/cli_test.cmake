@@ -113,13 +113,13 @@ if(EXISTS "${WORK}/a.png")
 endif()
 
 # A blow-up stops with the step and a dt to try, and writes no image.
-run(1 "try a smaller time step such as --dt" render --preset mcgraw_turing --size 32 --steps 1000 --dt 0.031 --backend cpu --out blown.png)
+run(1 "try a smaller time step such as --dt" render --preset mcgraw_turing --size 32 --scale 4 --steps 1000 --dt 0.031 --backend cpu --out blown.png)
 if(EXISTS "${WORK}/blown.png")
   message(SEND_ERROR "a blown-up run wrote an image")
 endif()
 
 # A dt beyond the explicit limit from the operator's symbol is capped, and says so.
-run(0 "exceeds the explicit stability limit 1.192" render --preset gs_coral --size 16 --steps 20 --dt 5 --backend cpu --out capped.png)
+run(0 "exceeds the explicit stability limit 1.192" render --preset gs_coral --size 16 --scale 16 --steps 20 --dt 5 --backend cpu --out capped.png)
 file(READ "${WORK}/capped.json" capped)
 string(FIND "${capped}" "\"dt\": 1.07" at)
 if(at EQUAL -1)

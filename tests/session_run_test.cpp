@@ -28,6 +28,7 @@ SimulatorFactory cpu() {
 Session smallGiraffe() {
     Session s = loadPreset("turk_giraffe");
     s.width = s.height = 32;
+    s.length = 0; // one unit per cell
     s.stages[0].steps = 260;
     s.stages[1].steps = 90;
     s.steps = 350;
@@ -36,6 +37,7 @@ Session smallGiraffe() {
 
 Session smallSchedule() {
     Session s = loadPreset("gs_coral");
+    s.length = 0; // one unit per cell at the finest level
     applySchedule(s, {{16, 16, 120}, {24, 24, 70}, {32, 32, 60}});
     return s;
 }
@@ -318,6 +320,7 @@ TEST(LiveChanges, AMappedParameterKeepsItsMap) {
     Session s = loadPreset("gs_coral");
     s.width = 40;
     s.height = 8;
+    s.length = 0;
     s.steps = 2;
     s.dt = 0.5f;
     s.params["Du"] = s.params["Dv"] = 0.0f;

@@ -10,12 +10,14 @@ namespace morphogen::test {
 Session smallSession(const std::string& preset, int size, int steps) {
     Session s = loadPreset(preset);
     s.width = s.height = size;
+    s.length = 0; // one unit per cell: the preset's model on a small grid, not its pattern
     s.steps = steps;
     return s;
 }
 
 Session shrunk(Session s, int size, int stepsPerSegment) {
     s.width = s.height = size;
+    s.length = 0; // one unit per cell (see smallSession)
     if (!s.schedule.empty()) {
         const int levels = int(s.schedule.size());
         for (int i = 0; i < levels; ++i) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <climits>
 #include <cstdio>
-#include <cstdlib>
 
 #include "cli/progress.hpp"
 #include "core/base/errors.hpp"
@@ -78,8 +77,7 @@ SettleRun::SettleRun(const SettleFlags& flags, Session& session, bool preset, bo
     const int chemical = session.colormap.chemical.empty()
                              ? model.displayChemical()
                              : std::max(0, model.chemicalIndex(session.colormap.chemical));
-    m_detector =
-        std::make_unique<SettleDetector>(chemical, session.edges == EdgeMode::Periodic);
+    m_detector = std::make_unique<SettleDetector>(chemical, session.edges == EdgeMode::Periodic);
 }
 
 void SettleRun::attach(RunOptions& options, Progress& progress) {
@@ -90,8 +88,6 @@ void SettleRun::attach(RunOptions& options, Progress& progress) {
     SettleDetector* detector = m_detector.get();
     options.settled = [detector, &progress](const State& state) {
         const bool settled = detector->check(state);
-        if (std::getenv("MG_TRACE"))
-            std::fprintf(stderr, "TRACE %d %.5f %d\n", detector->checks(), detector->change(), detector->features());
         progress.setNote("settling: change " + percent(detector->change()) + " (target " +
                          percent(detector->changeTolerance()) + "), " +
                          std::to_string(detector->features()) + " features, stable " +
@@ -106,8 +102,8 @@ std::string SettleRun::summary(const RunResult& result, bool& warning) const {
     if (!active() || result.cancelled)
         return {};
     if (result.settled)
-        return "settled: " + std::to_string(m_detector->features()) +
-               " features, changing by " + percent(m_detector->change()) +
+        return "settled: " + std::to_string(m_detector->features()) + " features, changing by " +
+               percent(m_detector->change()) +
                " of its range per check; the session records the steps that ran";
     warning = true;
     return "did not settle within its cap of " + std::to_string(m_cap) +

@@ -181,8 +181,8 @@ State makeInitialState(const InitialCondition& init, const ReactionModel& model,
             for (int x = 0; x < width; ++x) {
                 const std::size_t i = std::size_t(y) * width + x;
                 const float value = marked[i] ? inside : base;
-                plane[i] = noise == 0.0f ? value
-                                         : float(value + noise * field.at(std::uint64_t(c), x, y));
+                plane[i] =
+                    noise == 0.0f ? value : float(value + noise * field.at(std::uint64_t(c), x, y));
             }
     }
     model.prepareState(state, params, field);

@@ -37,8 +37,7 @@ void TuringTurkModel::prepareState(State& state, const ParamValues& values,
     // Stream 1000 keeps beta's noise independent of the chemicals' noise streams.
     for (int y = 0; y < state.height(); ++y)
         for (int x = 0; x < state.width(); ++x)
-            beta[std::size_t(y) * state.width() + x] =
-                float(mean + noise * field.at(1000, x, y));
+            beta[std::size_t(y) * state.width() + x] = float(mean + noise * field.at(1000, x, y));
 }
 
 } // namespace morphogen

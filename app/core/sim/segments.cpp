@@ -160,8 +160,8 @@ std::string describePlan(const Session& session) {
         long long ownSteps = 0;
         for (; own < segments.size() && !segments[own].refine; ++own)
             ownSteps += segments[own].session.steps;
-        os << "; coarse-to-fine: the session's steps at " << size(first.session) << " ("
-           << ownSteps << " steps" << (first.substeps > 1 ? " of dt/" + std::to_string(first.substeps) : "")
+        os << "; coarse-to-fine: the session's steps at " << size(first.session) << " (" << ownSteps
+           << " steps" << (first.substeps > 1 ? " of dt/" + std::to_string(first.substeps) : "")
            << "), then refined at";
         for (std::size_t i = own; i < segments.size(); ++i)
             os << (i == own ? " " : ", ") << size(segments[i].session) << " (" << steps(segments[i])

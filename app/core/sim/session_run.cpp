@@ -32,8 +32,8 @@ void SessionRun::enterSegment(std::size_t i) {
 
     else if (m_state.width() != part.width || m_state.height() != part.height) {
         if (!m_frozen.empty())
-            m_frozen = resampleMask(m_frozen, m_state.width(), m_state.height(), part.width,
-                                    part.height);
+            m_frozen =
+                resampleMask(m_frozen, m_state.width(), m_state.height(), part.width, part.height);
         m_state = resampleBilinear(m_state, part.width, part.height, part.edges);
     }
     // The rule reads the previous stage's result, with that stage's model.
@@ -41,9 +41,8 @@ void SessionRun::enterSegment(std::size_t i) {
         m_frozen = applyFreezeRule(*segment.freeze, m_state, *m_stateModel, std::move(m_frozen));
     if (segment.newModel && i > 0) {
         // A new model: a fresh start of its own; only the frozen mask carries over.
-        m_state =
-            makeInitialState(part.init, model, part.params, part.width, part.height, part.seed,
-                              part.layoutCellSize());
+        m_state = makeInitialState(part.init, model, part.params, part.width, part.height,
+                                   part.seed, part.layoutCellSize());
         m_stateModel = &model;
     }
     if (!segment.reset.empty() && !m_frozen.empty())

@@ -48,17 +48,18 @@ float checkExplicitStep(const Segment& segment, const std::string& what, bool ve
     if (part.dt > *st.maxStableDt) {
         const float capped = float(0.9 * limit);
         report.notes.push_back(
-            {true, format("%sdt %g exceeds the explicit stability limit %.4g%s (%s); capped to %.4g",
-                          what.c_str(), double(segment.sessionDt), limit, steps.c_str(),
-                          st.basis.c_str(), double(capped))});
+            {true,
+             format("%sdt %g exceeds the explicit stability limit %.4g%s (%s); capped to %.4g",
+                    what.c_str(), double(segment.sessionDt), limit, steps.c_str(), st.basis.c_str(),
+                    double(capped))});
         report.capped = true;
         return capped;
     }
     if (!st.exact && verbose)
         report.notes.push_back(
-            {false, format("%sexplicit step: dt %g within the %s (largest stable dt %.4g%s)",
-                           what.c_str(), double(segment.sessionDt), st.basis.c_str(), limit,
-                           steps.c_str())});
+            {false,
+             format("%sexplicit step: dt %g within the %s (largest stable dt %.4g%s)", what.c_str(),
+                    double(segment.sessionDt), st.basis.c_str(), limit, steps.c_str())});
     if (st.exact && verbose)
         report.notes.push_back(
             {false, format("%sexplicit step: spectral radius of I + dt A = %.4f at dt %g (largest "
