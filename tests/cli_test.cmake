@@ -524,3 +524,49 @@ run(2 "--theta 10: stage 2 of this cascade changes the model" render --preset tu
 if(EXISTS "${WORK}/x.png")
   message(SEND_ERROR "a refused knob flag wrote x.png")
 endif()
+
+# The same look at any size: a preset at a size over twice its length runs its
+# steps near one cell per unit and refines, and says so; the session keeps its
+# length and its own steps.
+run(0 "coarse-to-fine: the session's steps at 128 x 128" render --preset turk_large_spots --size 256 --steps 40 --backend cpu --out big.png)
+file(READ "${WORK}/big.json" big)
+string(JSON big_length ERROR_VARIABLE big_error GET "${big}" length)
+string(JSON big_steps ERROR_VARIABLE big_error GET "${big}" steps)
+string(JSON big_size ERROR_VARIABLE big_error GET "${big}" size 0)
+if(big_error OR NOT big_length EQUAL 128 OR NOT big_steps EQUAL 40 OR NOT big_size EQUAL 256)
+  message(SEND_ERROR "a 256 render of a 128-unit preset: want length 128, steps 40, size 256: ${big}")
+endif()
+# --scale: features 4x larger, so 64 cells hold 64 units (one per cell).
+run(0 "" render --preset gs_coral --size 64 --scale 4 --steps 10 --backend cpu --out scaled.png)
+file(READ "${WORK}/scaled.json" scaled)
+string(JSON scaled_length ERROR_VARIABLE scaled_error GET "${scaled}" length)
+if(scaled_error OR NOT scaled_length EQUAL 64)
+  message(SEND_ERROR "--scale 4 on a 256-unit preset: want length 64: ${scaled}")
+endif()
+run(2 "--scale 0.000000: accepted are numbers in (0, 1000]" render --preset gs_coral --scale 0 --out x.png)
+run(0 "under-resolved" render --preset gs_coral --size 32 --steps 5 --backend cpu --out coarse.png)
+# A session written before "length" is read as written for its own size, and says so.
+file(WRITE "${WORK}/old.json" "{\"model\": \"gray_scott\", \"size\": 24, \"steps\": 10}")
+run(0 "old.json has no \"length\": read as written for its own size, 24 units wide" render --session old.json --size 48 --backend cpu --out old_big.png)
+file(READ "${WORK}/old_big.json" old_written)
+string(JSON old_length ERROR_VARIABLE old_error GET "${old_written}" length)
+if(old_error OR NOT old_length EQUAL 24)
+  message(SEND_ERROR "an old session at twice its size: want length 24 written: ${old_written}")
+endif()
+
+# Until settled, the default for presets: a uniform state settles early and the
+# session records the steps that ran; a chaotic one stops at its cap and says so.
+run(0 "settled after" render --preset gs_uniform --size 32 --scale 8 --backend cpu --out settled.png)
+file(READ "${WORK}/settled.json" settled)
+string(JSON settled_steps ERROR_VARIABLE settled_error GET "${settled}" steps)
+if(settled_error OR NOT settled_steps LESS 4000 OR NOT settled_steps GREATER 1999)
+  message(SEND_ERROR "gs_uniform until settled: want 2000..3999 of its 4000 steps recorded: ${settled}")
+endif()
+run(0 "did not settle within its cap of 400 steps" render --preset gs_chaos --size 32 --scale 8 --max-steps 400 --backend cpu --out chaos.png)
+run(0 "" render --preset gs_uniform --size 32 --scale 8 --no-settle --backend cpu --out unsettled.png)
+file(READ "${WORK}/unsettled.json" unsettled)
+string(JSON unsettled_steps ERROR_VARIABLE unsettled_error GET "${unsettled}" steps)
+if(unsettled_error OR NOT unsettled_steps EQUAL 4000)
+  message(SEND_ERROR "--no-settle: want the preset's 4000 steps: ${unsettled}")
+endif()
+run(2 "--max-steps applies to a run until settled" render --session settled.json --max-steps 10 --out x.png)

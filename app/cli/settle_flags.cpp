@@ -102,9 +102,10 @@ std::string SettleRun::summary(const RunResult& result, bool& warning) const {
     if (!active() || result.cancelled)
         return {};
     if (result.settled)
-        return "settled: " + std::to_string(m_detector->features()) + " features, changing by " +
-               percent(m_detector->change()) +
-               " of its range per check; the session records the steps that ran";
+        return "settled after " + std::to_string(result.completed.steps) +
+               " steps (feature count and change stable over " +
+               std::to_string(m_detector->window()) + " checks, last change " +
+               percent(m_detector->change()) + " of the range); the session records them";
     warning = true;
     return "did not settle within its cap of " + std::to_string(m_cap) +
            " steps on the last stage (still changing by " + percent(m_detector->change()) +
