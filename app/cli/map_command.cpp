@@ -26,12 +26,15 @@ namespace morphogen::cli {
 
 namespace {
 
+// The map's width in model units (one unit per cell at the default size).
+constexpr int kMapLength = 512;
+
 struct MapFlags {
     std::string model;
     std::string preset;
     std::string x, y;
     std::string out;
-    int size = 512;
+    int size = kMapLength;
     int steps = -1;
     long long seed = -1;
     std::string tensor;
@@ -80,12 +83,14 @@ MapPlan planMap(const MapFlags& f) {
         throw InputError("--size " + std::to_string(f.size) + ": accepted are 16.." +
                          std::to_string(kMaxGridSide));
     const ExplorationStart start = parseStartFlag(f.start);
-    useStart(s, start, f.size, !f.preset.empty());
+    useStart(s, start, int(kMapLength), !f.preset.empty());
     s.description = "map of " + plan.x.param + " x " + plan.y.param + " from " +
                     (f.preset.empty() ? "model " + f.model : "preset " + f.preset) + ", " +
                     startDescription(start);
+    // A map is kMapLength units across at every --size, one unit per cell at
+    // the default: a larger size is the same map in more detail.
     s.width = s.height = f.size;
-    s.length = 0; // one unit per cell: the map shows the presets' design scale
+    s.length = kMapLength;
     plan.ownEdges = s.edges;
     // Periodic edges would join the two ends of each swept range, coupling unrelated parameter
     // values into an artefact strip along the borders; zero-flux edges keep each end to itself.
@@ -204,7 +209,9 @@ void addMapCommand(CLI::App& app) {
     cmd->add_option("--x", flags->x, "PARAM:MIN:MAX swept left to right")->required();
     cmd->add_option("--y", flags->y, "PARAM:MIN:MAX swept bottom to top")->required();
     cmd->add_option("--out", flags->out, "output image (.png, .tif)")->required();
-    cmd->add_option("--size", flags->size, "map size in cells (default 512)");
+    cmd->add_option("--size", flags->size,
+                    "map resolution in cells (default 512: one cell per unit; larger sizes are "
+                    "the same map in more detail)");
     cmd->add_option("--steps", flags->steps, "steps (default: the preset's, or 10000)");
     cmd->add_option("--seed", flags->seed, "random seed");
     cmd->add_option("--tensor", flags->tensor,
