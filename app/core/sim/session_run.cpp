@@ -95,23 +95,27 @@ void SessionRun::enterSegment(std::size_t i) {
     // soon as they are entered.
     if (part.steps == 0)
         finishSegment(m_state);
+    else
+        m_state = State(); // the simulator holds it now: one copy of the state, not two
 }
 
 void SessionRun::finishSegment(State state) {
     m_state = std::move(state);
-    if (m_index + 1 < m_segments.size())
+    if (m_index + 1 < m_segments.size()) {
         enterSegment(m_index + 1);
-    else
+    } else {
         m_finished = true;
+        m_simulator.reset(); // its buffers or textures: the state is in m_state now
+    }
 }
 
 int SessionRun::segmentRemaining() const {
     return m_finished ? 0 : m_segments[m_index].session.steps - m_stepsRun[m_index];
 }
 
-void SessionRun::checkBlowUp(const State& state, int before) const {
+void SessionRun::checkBlowUp(int before) const {
     const Session& part = segmentSession();
-    auto problem = findInsaneValue(state, part.reactionModel());
+    auto problem = m_simulator->insaneValue(part.reactionModel());
     if (!problem)
         return;
     const int done = m_stepsRun[m_index];
@@ -141,11 +145,10 @@ int SessionRun::advance(int steps) {
         const int now = m_stepsRun[m_index];
         const bool end = now == length;
         if (end || (m_checkEvery > 0 && now % m_checkEvery == 0)) {
-            State state = m_simulator->state();
             const int before = m_checkEvery > 0 ? (now - 1) / m_checkEvery * m_checkEvery : 0;
-            checkBlowUp(state, before);
+            checkBlowUp(before);
             if (end)
-                finishSegment(std::move(state));
+                finishSegment(m_simulator->takeState());
         }
     }
     return run;
@@ -153,7 +156,7 @@ int SessionRun::advance(int steps) {
 
 void SessionRun::endSegment() {
     if (!m_finished)
-        finishSegment(m_simulator->state());
+        finishSegment(m_simulator->takeState());
 }
 
 RunPosition SessionRun::position() const {
