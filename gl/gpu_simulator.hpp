@@ -67,7 +67,8 @@ public:
 
     std::string backendName() const override { return "gpu"; }
     void setState(const State& state) override;
-    State state() const override;
+    State state() const override; // read back a band of rows at a time
+    std::optional<std::string> insaneValue(const ReactionModel& model) const override;
     void run(int steps) override;
     void setFrozen(const std::vector<std::uint8_t>& frozen) override;
     void applyBrush(const Brush& brush) override; // gpu_brush.cpp
@@ -90,6 +91,11 @@ private:
     void brushChemical(const Brush& brush);
     void brushFrozen(const Brush& brush);
     void brushParamMap(const Brush& brush);
+    // State read-backs a band of rows at a time: readBand fills `band` (full
+    // rows from y0) through `texels`; forEachBand calls fn(y0, band) top to
+    // bottom.
+    void readBand(int y0, State& band, std::vector<float>& texels) const;
+    template <class Fn> void forEachBand(const Fn& fn) const;
 
     Session m_session;
     const ReactionModel* m_model;

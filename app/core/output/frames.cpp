@@ -74,7 +74,7 @@ RunResult runWithFrames(const Session& session, const SimulatorFactory& makeSimu
         if (options.progress)
             options.progress(run.position().stepsDone, session.steps);
     }
-    RunResult result = run.result();
+    RunResult result = run.takeResult();
     result.cancelled = cancelled;
     return result;
 }

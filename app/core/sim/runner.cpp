@@ -61,7 +61,7 @@ RunResult runSession(const Session& session, const SimulatorFactory& makeSimulat
         if (options.progress)
             options.progress(run.position().stepsDone, session.steps);
     }
-    RunResult result = run.result();
+    RunResult result = run.takeResult();
     result.cancelled = cancelled;
     return result;
 }

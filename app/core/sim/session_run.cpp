@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "core/base/errors.hpp"
 #include "core/base/names.hpp"
@@ -224,9 +225,17 @@ Session SessionRun::completed() const {
 }
 
 RunResult SessionRun::result() const {
+    return resultWith(state());
+}
+
+RunResult SessionRun::takeResult() {
+    return resultWith(m_finished ? std::exchange(m_state, State()) : m_simulator->state());
+}
+
+RunResult SessionRun::resultWith(State state) const {
     RunResult r;
     r.stepsDone = m_stepsDone;
-    r.state = state();
+    r.state = std::move(state);
     // A run stopped on a coarse level leaves a coarse state: bring it to the final size.
     if (r.state.width() != m_session.width || r.state.height() != m_session.height)
         r.state = resampleBilinear(r.state, m_session.width, m_session.height, m_session.edges);

@@ -79,6 +79,9 @@ public:
     // completed() and the state, resampled to the session's final size when a
     // run stopped on a coarse level.
     RunResult result() const;
+    // result(), the final state moved out rather than copied (a big render
+    // holds one copy at the end): the run is spent, state() is empty after.
+    RunResult takeResult();
 
     // Live changes to the current segment, from the next step on: the
     // simulator updates its constants (uniforms on the GPU, no rebuild).
@@ -100,6 +103,7 @@ private:
     // Reads the simulator's state in place (Simulator::insaneValue).
     void checkBlowUp(int before) const;
     void finishSegment(State state);
+    RunResult resultWith(State state) const;
 
     Session m_session;
     SimulatorFactory m_make;
