@@ -179,12 +179,15 @@ void GpuSimulator::setFrozen(const std::vector<std::uint8_t>& frozen) {
     const bool hadMask = !m_frozenMask.empty();
     m_frozenMask = frozen;
     if (!frozen.empty()) {
-        std::vector<float> rgba(frozen.size() * 4, 0.0f);
+        // One byte per cell (255 reads as 1.0): a big cascade's mask costs
+        // a sixteenth of an RGBA float texture, and no float copy to upload.
+        std::vector<std::uint8_t> bytes(frozen.size());
         for (std::size_t i = 0; i < frozen.size(); ++i)
-            rgba[i * 4] = frozen[i] ? 1.0f : 0.0f;
+            bytes[i] = frozen[i] ? 255 : 0;
+        const int w = m_k.domain.width(), h = m_k.domain.height();
         if (!m_frozen.id())
-            m_frozen = Texture2D(m_k.domain.width(), m_k.domain.height(), GL_RGBA32F);
-        m_frozen.uploadRgba(rgba);
+            m_frozen = Texture2D(w, h, GL_R8);
+        m_frozen.uploadBytesRect(0, 0, w, h, bytes.data());
     }
     if (hadMask != !frozen.empty())
         buildPrograms(); // the FROZEN variant comes and goes with the mask

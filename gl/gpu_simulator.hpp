@@ -108,7 +108,7 @@ private:
     std::vector<Texture2D> m_rhs;
     Framebuffer m_rhsFramebuffer;
     Texture2D m_paramMap;     // param_maps: up to 4 parameters per cell
-    Texture2D m_frozen;       // cascades: 1 where a cell is frozen
+    Texture2D m_frozen;       // cascades: 255 where a cell is frozen (GL_R8)
     Texture2D m_connectivity; // atlas domains: 4 neighbours per texel, x | y << 16
     Texture2D m_diagonals[2]; // 9-point on an atlas: the diagonals, x then y / y then x
     std::vector<std::uint8_t> m_frozenMask;

@@ -69,6 +69,15 @@ void Texture2D::uploadRgbaRect(int x, int y, int width, int height,
     glTexSubImage2D(GL_TEXTURE_2D, 0, x, y, width, height, GL_RGBA, GL_FLOAT, rgba.data());
 }
 
+void Texture2D::uploadBytesRect(int x, int y, int width, int height, const std::uint8_t* bytes) {
+    assert(m_internalFormat == GL_R8);
+    assert(x >= 0 && y >= 0 && x + width <= m_width && y + height <= m_height);
+    glBindTexture(GL_TEXTURE_2D, id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, x, y, width, height, GL_RED, GL_UNSIGNED_BYTE, bytes);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+}
+
 void Texture2D::uploadRgbaUint(const std::vector<std::uint32_t>& rgba) {
     assert(m_internalFormat == GL_RGBA32UI && rgba.size() == std::size_t(m_width) * m_height * 4);
     glBindTexture(GL_TEXTURE_2D, id());

@@ -71,6 +71,9 @@ public:
     void uploadRgba(const std::vector<float>& rgba);
     // RGBA floats (width * height * 4) into the rectangle at (x, y).
     void uploadRgbaRect(int x, int y, int width, int height, const std::vector<float>& rgba);
+    // One byte per texel (0..255 read as 0..1) into the rectangle at (x, y)
+    // of a GL_R8 texture.
+    void uploadBytesRect(int x, int y, int width, int height, const std::uint8_t* bytes);
     // Whole-texture upload of an integer (GL_RGBA32UI) texture.
     void uploadRgbaUint(const std::vector<std::uint32_t>& rgba);
     std::vector<float> downloadRgba() const;
