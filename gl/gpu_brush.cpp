@@ -146,12 +146,12 @@ void GpuSimulator::brushFrozen(const Brush& brush) {
     }
     const std::uint32_t w = std::uint32_t(m_k.domain.width());
     for (const CellRect& r : brush.region.rects()) {
-        std::vector<float> rgba(std::size_t(r.width) * std::size_t(r.height) * 4, 0.0f);
+        std::vector<std::uint8_t> bytes(std::size_t(r.width) * std::size_t(r.height));
         for (int y = 0; y < r.height; ++y)
             for (int x = 0; x < r.width; ++x)
-                rgba[(std::size_t(y) * std::size_t(r.width) + std::size_t(x)) * 4] =
-                    m_frozenMask[std::size_t(r.y + y) * w + std::size_t(r.x + x)] ? 1.0f : 0.0f;
-        m_frozen.uploadRgbaRect(r.x, r.y, r.width, r.height, rgba);
+                bytes[std::size_t(y) * std::size_t(r.width) + std::size_t(x)] =
+                    m_frozenMask[std::size_t(r.y + y) * w + std::size_t(r.x + x)] ? 255 : 0;
+        m_frozen.uploadBytesRect(r.x, r.y, r.width, r.height, bytes.data());
     }
 }
 

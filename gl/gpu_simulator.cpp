@@ -1,5 +1,6 @@
 #include "gl/gpu_simulator.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cfloat>
 #include <cmath>
@@ -8,6 +9,7 @@
 
 #include "core/domain/atlas.hpp"
 #include "core/domain/atlas_diagonals.hpp"
+#include "core/operators/stability.hpp"
 
 namespace morphogen::gl {
 
@@ -177,12 +179,15 @@ void GpuSimulator::setFrozen(const std::vector<std::uint8_t>& frozen) {
     const bool hadMask = !m_frozenMask.empty();
     m_frozenMask = frozen;
     if (!frozen.empty()) {
-        std::vector<float> rgba(frozen.size() * 4, 0.0f);
+        // One byte per cell (255 reads as 1.0): a big cascade's mask costs
+        // a sixteenth of an RGBA float texture, and no float copy to upload.
+        std::vector<std::uint8_t> bytes(frozen.size());
         for (std::size_t i = 0; i < frozen.size(); ++i)
-            rgba[i * 4] = frozen[i] ? 1.0f : 0.0f;
+            bytes[i] = frozen[i] ? 255 : 0;
+        const int w = m_k.domain.width(), h = m_k.domain.height();
         if (!m_frozen.id())
-            m_frozen = Texture2D(m_k.domain.width(), m_k.domain.height(), GL_RGBA32F);
-        m_frozen.uploadRgba(rgba);
+            m_frozen = Texture2D(w, h, GL_R8);
+        m_frozen.uploadBytesRect(0, 0, w, h, bytes.data());
     }
     if (hadMask != !frozen.empty())
         buildPrograms(); // the FROZEN variant comes and goes with the mask
@@ -262,17 +267,79 @@ void GpuSimulator::bindAuxiliaryTextures() const {
             m_diagonals[order].bind(kDiagonalUnits[order]);
 }
 
+namespace {
+
+// Rows per band of a state transfer: about 256k texels, a few MB of scratch.
+int bandRows(int width) {
+    return std::max(1, (1 << 18) / std::max(1, width));
+}
+
+} // namespace
+
 void GpuSimulator::setState(const State& state) {
     assert(state.channels() == m_k.chemicals);
-    for (int t = 0; t < m_pingPong.count(); ++t)
-        m_pingPong.current(t).uploadRgba(state.toRgba(4 * t));
+    const int w = state.width(), h = state.height();
+    std::vector<float> texels;
+    for (int y0 = 0; y0 < h; y0 += bandRows(w)) {
+        const int rows = std::min(bandRows(w), h - y0);
+        const std::size_t cells = std::size_t(w) * std::size_t(rows);
+        const std::size_t offset = std::size_t(y0) * std::size_t(w);
+        for (int t = 0; t < m_pingPong.count(); ++t) {
+            Texture2D& texture = m_pingPong.current(t);
+            const int n = texture.components();
+            texels.assign(cells * std::size_t(n), 0.0f); // chemicals past the last are 0
+            for (int k = 0; k < n && 4 * t + k < state.channels(); ++k) {
+                const float* plane = state.plane(4 * t + k) + offset;
+                for (std::size_t i = 0; i < cells; ++i)
+                    texels[i * std::size_t(n) + std::size_t(k)] = plane[i];
+            }
+            texture.uploadRows(y0, rows, texels.data());
+        }
+    }
+}
+
+void GpuSimulator::readBand(int y0, State& band, std::vector<float>& texels) const {
+    const std::size_t cells = band.cellCount();
+    for (int t = 0; t < m_pingPong.count(); ++t) {
+        const Texture2D& texture = m_pingPong.current(t);
+        const int n = texture.components();
+        texels.resize(cells * std::size_t(n));
+        texture.downloadRows(y0, band.height(), texels.data());
+        for (int k = 0; k < n && 4 * t + k < band.channels(); ++k) {
+            float* plane = band.plane(4 * t + k);
+            for (std::size_t i = 0; i < cells; ++i)
+                plane[i] = texels[i * std::size_t(n) + std::size_t(k)];
+        }
+    }
+}
+
+template <class Fn> void GpuSimulator::forEachBand(const Fn& fn) const {
+    const int w = m_k.domain.width(), h = m_k.domain.height();
+    std::vector<float> texels;
+    State band;
+    for (int y0 = 0; y0 < h; y0 += bandRows(w)) {
+        const int rows = std::min(bandRows(w), h - y0);
+        if (band.height() != rows)
+            band = State(w, rows, m_k.chemicals);
+        readBand(y0, band, texels);
+        fn(y0, band);
+    }
 }
 
 State GpuSimulator::state() const {
     State state(m_k.domain.width(), m_k.domain.height(), m_k.chemicals);
-    for (int t = 0; t < m_pingPong.count(); ++t)
-        state.setRgba(m_pingPong.current(t).downloadRgba(), 4 * t);
+    forEachBand([&](int y0, const State& band) {
+        const std::size_t offset = std::size_t(y0) * std::size_t(band.width());
+        for (int c = 0; c < band.channels(); ++c)
+            std::copy_n(band.plane(c), band.cellCount(), state.plane(c) + offset);
+    });
     return state;
+}
+
+std::optional<std::string> GpuSimulator::insaneValue(const ReactionModel& model) const {
+    InsaneValueScan scan(model);
+    forEachBand([&](int y0, const State& band) { scan.scanRows(band, y0); });
+    return scan.result();
 }
 
 void GpuSimulator::run(int steps) {

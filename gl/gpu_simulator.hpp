@@ -67,7 +67,8 @@ public:
 
     std::string backendName() const override { return "gpu"; }
     void setState(const State& state) override;
-    State state() const override;
+    State state() const override; // read back a band of rows at a time
+    std::optional<std::string> insaneValue(const ReactionModel& model) const override;
     void run(int steps) override;
     void setFrozen(const std::vector<std::uint8_t>& frozen) override;
     void applyBrush(const Brush& brush) override; // gpu_brush.cpp
@@ -90,6 +91,11 @@ private:
     void brushChemical(const Brush& brush);
     void brushFrozen(const Brush& brush);
     void brushParamMap(const Brush& brush);
+    // State read-backs a band of rows at a time: readBand fills `band` (full
+    // rows from y0) through `texels`; forEachBand calls fn(y0, band) top to
+    // bottom.
+    void readBand(int y0, State& band, std::vector<float>& texels) const;
+    template <class Fn> void forEachBand(const Fn& fn) const;
 
     Session m_session;
     const ReactionModel* m_model;
@@ -102,7 +108,7 @@ private:
     std::vector<Texture2D> m_rhs;
     Framebuffer m_rhsFramebuffer;
     Texture2D m_paramMap;     // param_maps: up to 4 parameters per cell
-    Texture2D m_frozen;       // cascades: 1 where a cell is frozen
+    Texture2D m_frozen;       // cascades: 255 where a cell is frozen (GL_R8)
     Texture2D m_connectivity; // atlas domains: 4 neighbours per texel, x | y << 16
     Texture2D m_diagonals[2]; // 9-point on an atlas: the diagonals, x then y / y then x
     std::vector<std::uint8_t> m_frozenMask;

@@ -69,6 +69,15 @@ void Texture2D::uploadRgbaRect(int x, int y, int width, int height,
     glTexSubImage2D(GL_TEXTURE_2D, 0, x, y, width, height, GL_RGBA, GL_FLOAT, rgba.data());
 }
 
+void Texture2D::uploadBytesRect(int x, int y, int width, int height, const std::uint8_t* bytes) {
+    assert(m_internalFormat == GL_R8);
+    assert(x >= 0 && y >= 0 && x + width <= m_width && y + height <= m_height);
+    glBindTexture(GL_TEXTURE_2D, id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, x, y, width, height, GL_RED, GL_UNSIGNED_BYTE, bytes);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+}
+
 void Texture2D::uploadRgbaUint(const std::vector<std::uint32_t>& rgba) {
     assert(m_internalFormat == GL_RGBA32UI && rgba.size() == std::size_t(m_width) * m_height * 4);
     glBindTexture(GL_TEXTURE_2D, id());
@@ -83,6 +92,51 @@ std::vector<float> Texture2D::downloadRgba() const {
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, rgba.data());
     return rgba;
+}
+
+int Texture2D::components() const {
+    switch (m_internalFormat) {
+    case GL_R32F:
+        return 1;
+    case GL_RG32F:
+        return 2;
+    default:
+        assert(m_internalFormat == GL_RGBA32F);
+        return 4;
+    }
+}
+
+namespace {
+
+GLenum transferFormat(int components) {
+    return components == 1 ? GL_RED : components == 2 ? GL_RG : GL_RGBA;
+}
+
+} // namespace
+
+void Texture2D::uploadRows(int y, int rows, const float* data) {
+    assert(y >= 0 && rows >= 0 && y + rows <= m_height);
+    glBindTexture(GL_TEXTURE_2D, id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, y, m_width, rows, transferFormat(components()), GL_FLOAT,
+                    data);
+}
+
+void Texture2D::downloadRows(int y, int rows, float* data) const {
+    assert(y >= 0 && rows >= 0 && y + rows <= m_height);
+    GLint previous = 0;
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
+    GLuint fbo = 0;
+    glGenFramebuffers(1, &fbo);
+    const UniqueName<FramebufferTraits> owner(fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, id(), 0);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    // Float buffers are not clamped (GL_CLAMP_READ_COLOR is GL_FIXED_ONLY):
+    // the bits glGetTexImage would give.
+    glReadPixels(0, y, m_width, rows, transferFormat(components()), GL_FLOAT, data);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(previous));
 }
 
 Framebuffer::Framebuffer(const std::vector<const Texture2D*>& colours) {

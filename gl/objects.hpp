@@ -71,9 +71,21 @@ public:
     void uploadRgba(const std::vector<float>& rgba);
     // RGBA floats (width * height * 4) into the rectangle at (x, y).
     void uploadRgbaRect(int x, int y, int width, int height, const std::vector<float>& rgba);
+    // One byte per texel (0..255 read as 0..1) into the rectangle at (x, y)
+    // of a GL_R8 texture.
+    void uploadBytesRect(int x, int y, int width, int height, const std::uint8_t* bytes);
     // Whole-texture upload of an integer (GL_RGBA32UI) texture.
     void uploadRgbaUint(const std::vector<std::uint32_t>& rgba);
     std::vector<float> downloadRgba() const;
+    // Rows y .. y + rows - 1 of a float texture in its own layout,
+    // components() floats per texel: with no format conversion the driver
+    // makes no whole-texture staging copy either, so a big state moves
+    // through a band of rows of memory (the read goes through a framebuffer:
+    // glGetTexImage has no rectangle in GL 3.3).
+    void uploadRows(int y, int rows, const float* data);
+    void downloadRows(int y, int rows, float* data) const;
+    // Floats per texel of a float texture: 1 (R32F), 2 (RG32F) or 4 (RGBA32F).
+    int components() const;
 
 private:
     UniqueName<TextureTraits> m_name;

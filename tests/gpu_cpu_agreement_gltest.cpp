@@ -208,6 +208,44 @@ TEST(GpuCpuAgreement, UploadThenReadBackIsExact) {
     EXPECT_TRUE(gpu.state() == start);
 }
 
+// State transfers go a band of ~256k texels at a time: a grid of several
+// bands (the last one short), with two state textures (six chemicals: RGBA32F,
+// the second half empty), round-trips exactly, and the blow-up check over the
+// bands names the cell the CPU's whole-grid scan names.
+TEST(GpuCpuAgreement, BandedTransfersAndChecksMatchTheWholeGrid) {
+    test::glContext();
+    Session s = test::smallSession("meinhardt_random_stripes", 8, 0);
+    s.width = 700;
+    s.height = 1000; // 374 rows a band: three bands
+    const ReactionModel& model = s.reactionModel();
+    ASSERT_GT(model.chemicals().size(), 4u);
+    State start = initial(s);
+    for (int c = 0; c < start.channels(); ++c)
+        for (std::size_t i = 0; i < start.cellCount(); i += 7)
+            start.plane(c)[i] += 1e-3f * float(i % 13); // not one value per chemical
+    gl::GpuSimulator gpu(s);
+    gpu.setState(start);
+    EXPECT_TRUE(gpu.state() == start);
+    EXPECT_FALSE(gpu.insaneValue(model));
+
+    State broken = start;
+    broken.at(4, 5, 990) = NAN;  // in the last band
+    broken.at(1, 600, 3) = 1e9f; // an earlier band, a lower chemical: the answer
+    gpu.setState(broken);
+    const std::optional<std::string> found = gpu.insaneValue(model);
+    ASSERT_TRUE(found);
+    EXPECT_EQ(found, findInsaneValue(broken, model));
+    EXPECT_NE(found->find("at (600, 3)"), std::string::npos) << *found;
+
+    CpuSimulator cpu(s);
+    cpu.setState(broken);
+    EXPECT_EQ(cpu.insaneValue(model), found);
+    // takeState hands the buffer over: the same state, and none left behind.
+    cpu.setState(start);
+    EXPECT_TRUE(cpu.takeState() == start);
+    EXPECT_EQ(cpu.state().cellCount(), 0u);
+}
+
 // Every preset through runSession on both backends, with every stage and
 // schedule level (stages may freeze cells or change the model).
 TEST(GpuPresets, EveryPresetRunsOnBothBackendsAndTheyAgree) {

@@ -1,7 +1,9 @@
 // Output images through OpenImageIO: written files read back with the values
 // they should hold; bad paths give InputError before anything is written.
 
+#include <algorithm>
 #include <filesystem>
+#include <stdexcept>
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -102,6 +104,43 @@ TEST(ImageIo, FailedWriteLeavesNoFile) {
     EXPECT_THROW(writeRgbImage(path, rgb, 4, 4, 8), InputError);
     EXPECT_FALSE(fs::exists(path));
     EXPECT_THROW(writeRgbImage((workDir() / "x.png").string(), rgb, 4, 4, 12), InputError);
+}
+
+// Images are written a row at a time: the rows arrive in order, top first,
+// and a row that throws leaves neither the image nor its temporary file.
+TEST(ImageIo, RowsAreAskedForInOrderAndAFailingRowLeavesNoFile) {
+    const fs::path dir = workDir() / "rows";
+    fs::create_directories(dir);
+    const std::string path = (dir / "rows.png").string();
+    std::vector<int> asked;
+    writeImageRows(path, 3, 4, 1, 16, [&](int y, float* row) {
+        asked.push_back(y);
+        for (int x = 0; x < 3; ++x)
+            row[x] = float(y) / 3.0f;
+    });
+    EXPECT_EQ(asked, (std::vector<int>{0, 1, 2, 3}));
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in);
+    std::vector<unsigned short> px(12);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, px.data()));
+    EXPECT_EQ(px[0], 0);
+    EXPECT_EQ(px[3], 21845); // row 1: 1/3 of 65535
+    EXPECT_EQ(px[11], 65535);
+    in->close();
+
+    const std::string failing = (dir / "failing.png").string();
+    EXPECT_THROW(writeImageRows(failing, 3, 4, 3, 8,
+                                [](int y, float* row) {
+                                    if (y == 2)
+                                        throw std::runtime_error("row 2");
+                                    std::fill(row, row + 9, 0.5f);
+                                }),
+                 std::runtime_error);
+    EXPECT_FALSE(fs::exists(failing));
+    std::size_t files = 0;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir))
+        files += e.path().filename() != "rows.png" ? 1 : 0;
+    EXPECT_EQ(files, 0u) << "a temporary file was left behind";
 }
 
 TEST(Colormap, NamesAreCheckedAndFlatFieldsStayFlat) {

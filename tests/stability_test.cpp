@@ -38,6 +38,36 @@ TEST(Stability, InsaneValuesAreFoundAndNamed) {
     EXPECT_NE(found->find("sane range"), std::string::npos);
 }
 
+// A GPU read-back scans bands of rows; bands top to bottom must name the cell
+// the whole-grid scan names: the lowest chemical with a problem, its first
+// cell, even when a higher chemical's problem comes in an earlier band.
+TEST(Stability, ScanningBandsOfRowsFindsWhatTheWholeGridScanFinds) {
+    const ReactionModel& gs = *findModel("gray_scott");
+    State st(6, 9, 2);
+    st.at(1, 2, 1) = NAN;   // v in the first band
+    st.at(0, 4, 7) = 50.0f; // u in the last band: u is scanned first, so it is the answer
+    st.at(0, 5, 8) = NAN;   // a later u cell
+    const std::optional<std::string> whole = findInsaneValue(st, gs);
+    ASSERT_TRUE(whole);
+    EXPECT_NE(whole->find("chemical u = 50 at (4, 7)"), std::string::npos) << *whole;
+    for (int rows : {1, 2, 4, 9}) {
+        InsaneValueScan scan(gs);
+        for (int y0 = 0; y0 < st.height(); y0 += rows) {
+            const int n = std::min(rows, st.height() - y0);
+            State band(st.width(), n, st.channels());
+            for (int c = 0; c < st.channels(); ++c)
+                for (int y = 0; y < n; ++y)
+                    for (int x = 0; x < st.width(); ++x)
+                        band.at(c, x, y) = st.at(c, x, y0 + y);
+            scan.scanRows(band, y0);
+        }
+        EXPECT_EQ(scan.result(), whole) << rows << " rows per band";
+    }
+    InsaneValueScan sane(gs);
+    sane.scanRows(State(6, 9, 2), 0);
+    EXPECT_FALSE(sane.result());
+}
+
 // The engine's session check (the CLI prints its notes; the designer shows them).
 TEST(SessionStability, EachCascadeStageIsCheckedAndCappedWithItsOwnDt) {
     Session s = test::smallSession("gs_coral", 16, 40);

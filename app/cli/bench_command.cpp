@@ -1,6 +1,7 @@
 // morphogen bench: throughput of the GPU step against a same-format copy pass
 // on the same context (the ratio is the figure: it cancels the machine's
-// speed), and of the CPU backend, at several grid sizes.
+// speed), and of the CPU backend, at several grid sizes; and the peak memory
+// of renders against the state they simulate (bench_memory.hpp).
 
 #include <chrono>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/bench_domains.hpp"
+#include "cli/bench_memory.hpp"
 #include "cli/bench_timing.hpp"
 #include "cli/commands.hpp"
 #include "core/analysis/pattern_stats.hpp"
@@ -37,6 +39,8 @@ struct BenchFlags {
     int convergenceSize = 1024;
     bool noConvergence = false;
     bool noDomains = false;
+    std::string memorySizes = "1024,2048,4096";
+    bool noMemory = false;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -135,7 +139,7 @@ Convergence timeToConverge(const Session& session, const SimulatorFactory& make,
     return result;
 }
 
-std::vector<int> parseSizes(const std::string& text) {
+std::vector<int> parseSizes(const std::string& text, const std::string& flag = "--sizes") {
     std::vector<int> sizes;
     std::stringstream in(text);
     std::string item;
@@ -143,18 +147,19 @@ std::vector<int> parseSizes(const std::string& text) {
         char* end = nullptr;
         const long v = std::strtol(item.c_str(), &end, 10);
         if (item.empty() || *end != '\0' || v < 8 || v > kMaxGridSide)
-            throw InputError("--sizes '" + text + "': '" + item + "' is not a size in 8.." +
+            throw InputError(flag + " '" + text + "': '" + item + "' is not a size in 8.." +
                              std::to_string(kMaxGridSide));
         sizes.push_back(int(v));
     }
     if (sizes.empty())
-        throw InputError("--sizes is empty");
+        throw InputError(flag + " is empty");
     return sizes;
 }
 
 void checkFlags(const BenchFlags& f) {
     parseSizes(f.sizes);
-    parseSizes(f.operatorSizes); // refused before any row runs
+    parseSizes(f.operatorSizes, "--operator-sizes"); // refused before any row runs
+    parseSizes(f.memorySizes, "--memory-sizes");
     if (!(f.seconds > 0))
         throw InputError("--seconds must be positive");
     if (f.convergenceSize < 32 || f.convergenceSize > kMaxGridSide || f.convergenceSize % 2 != 0)
@@ -338,6 +343,15 @@ void bench(const BenchFlags& f) {
         report["domains"] = benchDomains(gpuRows, !f.noCpu, f.seconds);
     if (!f.noConvergence)
         report["convergence"] = convergenceRows(f);
+    if (!f.noMemory) {
+        MemoryBench memory{
+            parseSizes(f.memorySizes, "--memory-sizes"), f.preset, {}, f.context, f.gpuDevice};
+        if (!f.noCpu)
+            memory.backends.push_back("cpu");
+        if (gpuRows)
+            memory.backends.push_back("gpu");
+        report["memory"] = benchMemory(memory);
+    }
     if (!f.json.empty())
         writeJson(f.json, report);
 }
@@ -348,7 +362,8 @@ void addBenchCommand(CLI::App& app) {
     auto flags = std::make_shared<BenchFlags>();
     CLI::App* cmd = app.add_subcommand(
         "bench",
-        "Measure step throughput: GPU step vs a same-format copy pass, and the CPU backend");
+        "Measure step throughput (GPU step vs a same-format copy pass, and the CPU backend) and "
+        "the peak memory of renders");
     cmd->add_option("--json", flags->json, "also write the results as JSON to this file");
     cmd->add_option("--sizes", flags->sizes, "comma-separated grid sizes (default 256,512,1024)");
     cmd->add_option("--preset", flags->preset, "preset whose model is measured (default gs_coral)");
@@ -364,6 +379,9 @@ void addBenchCommand(CLI::App& app) {
                     "grid size for time-to-converged-pattern (default 1024)");
     cmd->add_flag("--no-convergence", flags->noConvergence, "skip time-to-converged-pattern");
     cmd->add_flag("--no-domains", flags->noDomains, "skip the atlas and batched-sweep rows");
+    cmd->add_option("--memory-sizes", flags->memorySizes,
+                    "sizes of the peak-memory renders, one process each (default 1024,2048,4096)");
+    cmd->add_flag("--no-memory", flags->noMemory, "skip the peak-memory rows");
     cmd->callback([flags] { bench(*flags); });
 }
 

@@ -95,8 +95,7 @@ void colour(const ColourFlags& f) {
 
     const RawImage raw = readRawImage(f.raw);
     const State state = modelOrdered(raw, model, f.raw, sessionPath);
-    writeRgbImage(f.out, applyColormap(state, chemical, spec), state.width(), state.height(),
-                  f.bitDepth);
+    writeColourMapped(f.out, ColourMapRows(state, chemical, spec), f.bitDepth);
     std::printf("%s\n", f.out.c_str());
 }
 

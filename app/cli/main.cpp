@@ -3,10 +3,12 @@
 #include <cstdio>
 #include <exception>
 
+#include "cli/bench_memory.hpp"
 #include "cli/commands.hpp"
 #include "core/base/errors.hpp"
 
 int main(int argc, char** argv) {
+    morphogen::cli::writePeakMemoryAtExit(); // for `bench`'s memory rows, when they ask
     CLI::App app{"Morphogen: reaction-diffusion textures (Turing, Gray-Scott) on the GPU or CPU",
                  "morphogen"};
     app.require_subcommand(1);

@@ -74,10 +74,10 @@ RunResult renderFrames(const Session& session, const SimulatorFactory& makeSimul
                  flags.dir.c_str(), double(levels.low), double(levels.high), levels.source.c_str());
     const FrameSink write = [&](int index, const RunResult& sofar) {
         const ReactionModel& m = sofar.completed.outputModel();
-        writeRgbImage(framePath(flags.dir, index),
-                      applyLockedColormap(sofar.state, colormapChemical(session.colormap, m),
-                                          session.colormap, levels),
-                      sofar.state.width(), sofar.state.height(), 8);
+        writeColourMapped(framePath(flags.dir, index),
+                          ColourMapRows(sofar.state, colormapChemical(session.colormap, m),
+                                        session.colormap, levels.low, levels.high),
+                          8);
     };
     return runWithFrames(session, makeSimulator, options, steps, write);
 }

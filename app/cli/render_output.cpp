@@ -42,8 +42,8 @@ void writeRenderOutput(const RunResult& result, const std::string& imagePath,
         writeRawImage(imagePath, result.state, names);
     } else {
         const int chemical = colormapChemical(session.colormap, model);
-        writeRgbImage(imagePath, applyColormap(result.state, chemical, session.colormap),
-                      session.width, session.height, bitDepth);
+        writeColourMapped(imagePath, ColourMapRows(result.state, chemical, session.colormap),
+                          bitDepth);
     }
     saveSessionFile(session, sessionPath);
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include <OpenImageIO/imageio.h>
 
@@ -50,20 +51,34 @@ void checkWritable(const std::string& path) {
 
 namespace {
 
-void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
-    // Keep the real extension on the temporary name: OIIO picks the format by it.
+// Opens a temporary file next to `path` (with the real extension: OIIO picks
+// the format by it), lets `pixels` write into it, then renames it into place,
+// so a failed write leaves no half-written image.
+void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec,
+                     const std::function<bool(OIIO::ImageOutput&)>& pixels) {
     const fs::path p(path);
     const std::string tmp =
         (p.parent_path() / (".~" + p.stem().string() + p.extension().string())).string();
     auto out = OIIO::ImageOutput::create(tmp);
     if (!out)
         throw InputError(path + ": no image writer for this format: " + OIIO::geterror());
-    if (!out->open(tmp, spec) || !out->write_image(spec.format, pixels) || !out->close()) {
+    bool written = false;
+    try {
+        written = out->open(tmp, spec) && pixels(*out) && out->close();
+    } catch (...) {
+        out.reset();
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw;
+    }
+    if (!written) {
         const std::string why = out->geterror();
+        out.reset();
         std::error_code ec;
         fs::remove(tmp, ec);
         throw InputError(path + ": writing the image failed: " + why);
     }
+    out.reset();
     std::error_code ec;
     fs::rename(tmp, path, ec);
     if (ec) {
@@ -72,35 +87,74 @@ void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const
     }
 }
 
+// Quantises one row of values into `typed`: 8- or 16-bit, clamped to [0, 1].
+template <class T> const T* quantise(const std::vector<float>& row, std::vector<T>& typed) {
+    typed.resize(row.size());
+    for (std::size_t i = 0; i < row.size(); ++i) {
+        if constexpr (sizeof(T) == 1)
+            typed[i] = toUnorm8(row[i]);
+        else
+            typed[i] = T(std::lround(std::clamp(row[i], 0.0f, 1.0f) * 65535.0f));
+    }
+    return typed.data();
+}
+
+// Writes rows of `type` (FLOAT: raw values; UINT8/UINT16: quantised).
+void writeTypedRows(const std::string& path, int width, int height, int channels,
+                    OIIO::TypeDesc type, const std::vector<std::string>& channelNames,
+                    const ImageRowFn& row) {
+    OIIO::ImageSpec spec(width, height, channels, type);
+    if (!channelNames.empty())
+        spec.channelnames.assign(channelNames.begin(), channelNames.end());
+    writeAtomically(path, spec, [&](OIIO::ImageOutput& out) {
+        std::vector<float> values(std::size_t(width) * std::size_t(channels));
+        std::vector<unsigned char> bytes;
+        std::vector<unsigned short> shorts;
+        for (int y = 0; y < height; ++y) {
+            row(y, values.data());
+            const void* data = values.data();
+            if (type == OIIO::TypeDesc::UINT8)
+                data = quantise(values, bytes);
+            else if (type == OIIO::TypeDesc::UINT16)
+                data = quantise(values, shorts);
+            if (!out.write_scanline(y, 0, type, data))
+                return false;
+        }
+        return true;
+    });
+}
+
 } // namespace
+
+void writeImageRows(const std::string& path, int width, int height, int channels, int bitDepth,
+                    const ImageRowFn& row) {
+    if (imageFormatForPath(path) == ImageFormat::Exr) {
+        writeTypedRows(path, width, height, channels, OIIO::TypeDesc::FLOAT, {}, row);
+        return;
+    }
+    if (bitDepth != 8 && bitDepth != 16)
+        throw InputError("bit depth " + std::to_string(bitDepth) +
+                         " is not supported (accepted: 8, 16)");
+    writeTypedRows(path, width, height, channels,
+                   bitDepth == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16, {}, row);
+}
+
+void writeRawRows(const std::string& path, int width, int height, int channels,
+                  const std::vector<std::string>& channelNames, const ImageRowFn& row) {
+    if (imageFormatForPath(path) == ImageFormat::Png)
+        throw InputError(path + ": PNG cannot hold raw float concentrations (use .exr or .tif)");
+    writeTypedRows(path, width, height, channels, OIIO::TypeDesc::FLOAT, channelNames, row);
+}
 
 namespace {
 
 void writeInterleaved(const std::string& path, const std::vector<float>& values, int width,
                       int height, int channels, int bitDepth) {
     assert(values.size() == std::size_t(width) * std::size_t(height) * std::size_t(channels));
-    const ImageFormat format = imageFormatForPath(path);
-    if (format == ImageFormat::Exr) {
-        OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
-        writeAtomically(path, spec, values.data());
-        return;
-    }
-    if (bitDepth != 8 && bitDepth != 16)
-        throw InputError("bit depth " + std::to_string(bitDepth) +
-                         " is not supported (accepted: 8, 16)");
-    if (bitDepth == 8) {
-        std::vector<unsigned char> px(values.size());
-        for (std::size_t i = 0; i < values.size(); ++i)
-            px[i] = toUnorm8(values[i]);
-        writeAtomically(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT8),
-                        px.data());
-    } else {
-        std::vector<unsigned short> px(values.size());
-        for (std::size_t i = 0; i < values.size(); ++i)
-            px[i] = (unsigned short)std::lround(std::clamp(values[i], 0.0f, 1.0f) * 65535.0f);
-        writeAtomically(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT16),
-                        px.data());
-    }
+    const std::size_t rowLength = std::size_t(width) * std::size_t(channels);
+    writeImageRows(path, width, height, channels, bitDepth, [&](int y, float* row) {
+        std::copy_n(values.data() + std::size_t(y) * rowLength, rowLength, row);
+    });
 }
 
 } // namespace
@@ -117,19 +171,15 @@ void writeGreyImage(const std::string& path, const std::vector<float>& grey, int
 
 void writeRawImage(const std::string& path, const State& state,
                    const std::vector<std::string>& channelNames) {
-    const ImageFormat format = imageFormatForPath(path);
-    if (format == ImageFormat::Png)
-        throw InputError(path + ": PNG cannot hold raw float concentrations (use .exr or .tif)");
     const int nc = state.channels();
-    OIIO::ImageSpec spec(state.width(), state.height(), nc, OIIO::TypeDesc::FLOAT);
-    spec.channelnames.assign(channelNames.begin(), channelNames.end());
-    std::vector<float> px(state.cellCount() * std::size_t(nc));
-    for (int c = 0; c < nc; ++c) {
-        const float* p = state.plane(c);
-        for (std::size_t i = 0; i < state.cellCount(); ++i)
-            px[i * std::size_t(nc) + std::size_t(c)] = p[i];
-    }
-    writeAtomically(path, spec, px.data());
+    const std::size_t w = std::size_t(state.width());
+    writeRawRows(path, state.width(), state.height(), nc, channelNames, [&](int y, float* row) {
+        for (int c = 0; c < nc; ++c) {
+            const float* p = state.plane(c) + std::size_t(y) * w;
+            for (std::size_t x = 0; x < w; ++x)
+                row[x * std::size_t(nc) + std::size_t(c)] = p[x];
+        }
+    });
 }
 
 } // namespace morphogen

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,22 @@ void checkWritable(const std::string& path);
 inline std::uint8_t toUnorm8(float v) {
     return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
+
+// Fills row y (0 at the top) of an image: width * channels interleaved values.
+using ImageRowFn = std::function<void(int y, float* row)>;
+
+// Writes an image a row at a time, asking `row` for each in order: values in
+// [0, 1] as 8- or 16-bit PNG/TIFF (quantised as toUnorm8 / to 65535), raw
+// floats for EXR. A big image costs a row of memory, not a whole-image
+// buffer. Atomic like writeRgbImage; an exception from `row` removes the
+// temporary file and propagates.
+void writeImageRows(const std::string& path, int width, int height, int channels, int bitDepth,
+                    const ImageRowFn& row);
+
+// The same with raw float values, named channels (OpenEXR, or float TIFF;
+// InputError for PNG).
+void writeRawRows(const std::string& path, int width, int height, int channels,
+                  const std::vector<std::string>& channelNames, const ImageRowFn& row);
 
 // Writes interleaved RGB in [0, 1] as 8- or 16-bit PNG/TIFF. Written to a
 // temporary file and renamed, so a failed write leaves no half-written image.

@@ -138,21 +138,39 @@ float suggestDt(const Session& session) {
 }
 
 std::optional<std::string> findInsaneValue(const State& state, const ReactionModel& model) {
-    for (int c = 0; c < state.channels(); ++c) {
-        const ChemicalSpec& spec = model.chemicals()[std::size_t(c)];
-        const float* p = state.plane(c);
-        for (std::size_t i = 0; i < state.cellCount(); ++i) {
+    InsaneValueScan scan(model);
+    scan.scanRows(state, 0);
+    return scan.result();
+}
+
+InsaneValueScan::InsaneValueScan(const ReactionModel& model)
+    : m_model(model), m_first(model.chemicals().size()) {}
+
+void InsaneValueScan::scanRows(const State& band, int y0) {
+    for (int c = 0; c < band.channels(); ++c) {
+        if (m_first[std::size_t(c)])
+            continue;
+        const ChemicalSpec& spec = m_model.chemicals()[std::size_t(c)];
+        const float* p = band.plane(c);
+        for (std::size_t i = 0; i < band.cellCount(); ++i) {
             const float v = p[i];
             if (std::isfinite(v) && v >= spec.saneMin && v <= spec.saneMax)
                 continue;
             std::ostringstream os;
-            os << "chemical " << spec.name << " = " << v << " at (" << i % state.width() << ", "
-               << i / state.width() << ")";
+            os << "chemical " << spec.name << " = " << v << " at (" << i % band.width() << ", "
+               << std::size_t(y0) + i / band.width() << ")";
             if (std::isfinite(v))
                 os << ", outside its sane range [" << spec.saneMin << ", " << spec.saneMax << "]";
-            return os.str();
+            m_first[std::size_t(c)] = os.str();
+            break;
         }
     }
+}
+
+std::optional<std::string> InsaneValueScan::result() const {
+    for (const std::optional<std::string>& first : m_first)
+        if (first)
+            return first;
     return std::nullopt;
 }
 

@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/base/state.hpp"
 #include "core/operators/diffusion_operator.hpp"
@@ -59,5 +60,22 @@ float suggestDt(const Session& session);
 // Finds the first cell whose value is NaN/Inf or outside the model's sane
 // range; returns a description ("chemical v = nan at (12, 40)") or nullopt.
 std::optional<std::string> findInsaneValue(const State& state, const ReactionModel& model);
+
+// findInsaneValue over a grid read a band of rows at a time (a GPU read-back
+// without a whole copy of the state): bands given top to bottom give the
+// answer findInsaneValue gives for the whole grid.
+class InsaneValueScan {
+public:
+    explicit InsaneValueScan(const ReactionModel& model);
+    // `band` holds full rows y0, y0 + 1, ... of the grid.
+    void scanRows(const State& band, int y0);
+    std::optional<std::string> result() const;
+
+private:
+    const ReactionModel& m_model;
+    // Per chemical, its first problem in plane order (findInsaneValue reports
+    // the lowest chemical that has one).
+    std::vector<std::optional<std::string>> m_first;
+};
 
 } // namespace morphogen

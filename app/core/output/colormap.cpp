@@ -4,10 +4,12 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
 #include "core/session/gradient.hpp"
 
 namespace morphogen {
@@ -128,8 +130,9 @@ int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model) {
     return index;
 }
 
-std::vector<float> applyColormap(const State& state, int chemical, const ColorMapSpec& spec) {
-    const std::vector<Rgb> palette = colormapAnchors(spec);
+ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec)
+    : m_state(state), m_chemical(chemical), m_palette(colormapAnchors(spec)),
+      m_levelLow(spec.levels[0]), m_levelScale(1.0f / (spec.levels[1] - spec.levels[0])) {
     const float* p = state.plane(chemical);
     const std::size_t n = state.cellCount();
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
@@ -142,21 +145,45 @@ std::vector<float> applyColormap(const State& state, int chemical, const ColorMa
     // of a few ulps) to the full palette would invent a pattern.
     const float range = hi - lo;
     const float magnitude = std::max({1.0f, std::fabs(lo), std::fabs(hi)});
-    const float scale = range > 1e-5f * magnitude ? 1.0f / range : 0.0f;
-    const float levelLow = spec.levels[0], levelScale = 1.0f / (spec.levels[1] - spec.levels[0]);
+    m_low = lo;
+    m_scale = range > 1e-5f * magnitude ? 1.0f / range : 0.0f;
+}
 
-    std::vector<float> rgb(n * 3);
-    for (std::size_t i = 0; i < n; ++i) {
-        const float normalised = std::isfinite(p[i]) ? (p[i] - lo) * scale : 0.0f;
-        const float t = std::clamp((normalised - levelLow) * levelScale, 0.0f, 1.0f);
+ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec, float low,
+                             float high)
+    : m_state(state), m_chemical(chemical), m_palette(colormapAnchors(spec)), m_low(low),
+      m_scale(1.0f / (high - low)), m_levelLow(spec.levels[0]),
+      m_levelScale(1.0f / (spec.levels[1] - spec.levels[0])) {
+    assert(low < high);
+}
+
+void ColourMapRows::row(int y, float* rgb) const {
+    const std::size_t w = std::size_t(m_state.width());
+    const float* p = m_state.plane(m_chemical) + std::size_t(y) * w;
+    for (std::size_t x = 0; x < w; ++x) {
+        const float normalised = std::isfinite(p[x]) ? (p[x] - m_low) * m_scale : 0.0f;
+        const float t = std::clamp((normalised - m_levelLow) * m_levelScale, 0.0f, 1.0f);
         // Grey and two-colour are two-anchor palettes: 0 + (1 - 0) * t is t
         // exactly, and low + (high - low) * t the plain blend.
-        const Rgb c = samplePalette(palette, t);
-        rgb[i * 3 + 0] = c[0];
-        rgb[i * 3 + 1] = c[1];
-        rgb[i * 3 + 2] = c[2];
+        const Rgb c = samplePalette(m_palette, t);
+        rgb[x * 3 + 0] = c[0];
+        rgb[x * 3 + 1] = c[1];
+        rgb[x * 3 + 2] = c[2];
     }
+}
+
+std::vector<float> applyColormap(const State& state, int chemical, const ColorMapSpec& spec) {
+    const ColourMapRows rows(state, chemical, spec);
+    const std::size_t rowLength = std::size_t(state.width()) * 3;
+    std::vector<float> rgb(state.cellCount() * 3);
+    for (int y = 0; y < state.height(); ++y)
+        rows.row(y, rgb.data() + std::size_t(y) * rowLength);
     return rgb;
+}
+
+void writeColourMapped(const std::string& path, const ColourMapRows& rows, int bitDepth) {
+    writeImageRows(path, rows.width(), rows.height(), 3, bitDepth,
+                   [&](int y, float* rgb) { rows.row(y, rgb); });
 }
 
 } // namespace morphogen

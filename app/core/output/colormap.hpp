@@ -33,4 +33,33 @@ constexpr int kMaxColormapAnchors = 16;
 // interleaved RGB in [0, 1].
 std::vector<float> applyColormap(const State& state, int chemical, const ColorMapSpec& spec);
 
+// A colour map applied a row at a time: the levels are found once, then rows
+// are mapped on demand, so a big image is written without a whole-image RGB
+// buffer. Holds a reference to the state.
+class ColourMapRows {
+public:
+    // applyColormap's min-max levels over the chemical's plane.
+    ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec);
+    // Fixed levels: chemical values low..high (low < high) map to 0..1 before
+    // spec.levels' window (applyLockedColormap, frames.hpp).
+    ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec, float low,
+                  float high);
+    int width() const { return m_state.width(); }
+    int height() const { return m_state.height(); }
+    // Row y's interleaved RGB in [0, 1] (width * 3 values).
+    void row(int y, float* rgb) const;
+
+private:
+    const State& m_state;
+    int m_chemical;
+    std::vector<std::array<float, 3>> m_palette;
+    float m_low = 0.0f;
+    float m_scale = 0.0f;
+    float m_levelLow;
+    float m_levelScale;
+};
+
+// Writes the rows as an 8- or 16-bit RGB PNG/TIFF (image_io's writeImageRows).
+void writeColourMapped(const std::string& path, const ColourMapRows& rows, int bitDepth);
+
 } // namespace morphogen

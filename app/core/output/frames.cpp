@@ -75,7 +75,7 @@ RunResult runWithFrames(const Session& session, const SimulatorFactory& makeSimu
         if (options.progress)
             options.progress(run.position().stepsDone, run.position().totalSteps);
     }
-    RunResult result = run.result();
+    RunResult result = run.takeResult();
     result.cancelled = cancelled;
     result.settled = run.settledEarly();
     return result;
@@ -102,25 +102,11 @@ FrameLevels frameLevels(const ReactionModel& model, int chemical, const std::str
 
 std::vector<float> applyLockedColormap(const State& state, int chemical, const ColorMapSpec& spec,
                                        const FrameLevels& levels) {
-    assert(levels.low < levels.high);
-    const std::vector<std::array<float, 3>> palette = colormapAnchors(spec);
-    assert(palette.size() >= 2);
-    const float* p = state.plane(chemical);
-    const std::size_t n = state.cellCount();
-    const float scale = 1.0f / (levels.high - levels.low);
-    const float levelLow = spec.levels[0], levelScale = 1.0f / (spec.levels[1] - spec.levels[0]);
-    std::vector<float> rgb(n * 3);
-    for (std::size_t i = 0; i < n; ++i) {
-        const float v = std::isfinite(p[i]) ? (p[i] - levels.low) * scale : 0.0f;
-        const float t = std::clamp((v - levelLow) * levelScale, 0.0f, 1.0f);
-        const float x = t * float(palette.size() - 1);
-        const std::size_t k = std::min(std::size_t(x), palette.size() - 2);
-        const float f = x - float(k);
-        for (int c = 0; c < 3; ++c)
-            rgb[i * 3 + std::size_t(c)] =
-                palette[k][std::size_t(c)] +
-                (palette[k + 1][std::size_t(c)] - palette[k][std::size_t(c)]) * f;
-    }
+    const ColourMapRows rows(state, chemical, spec, levels.low, levels.high);
+    const std::size_t rowLength = std::size_t(state.width()) * 3;
+    std::vector<float> rgb(state.cellCount() * 3);
+    for (int y = 0; y < state.height(); ++y)
+        rows.row(y, rgb.data() + std::size_t(y) * rowLength);
     return rgb;
 }
 

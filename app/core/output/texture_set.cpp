@@ -25,40 +25,64 @@ HeightLevels heightLevels(const Session& session, int chemical) {
     return {r[0], r[1], "model display range"};
 }
 
+namespace {
+
+// (value - low) / (high - low) of one cell: heightField's value.
+struct HeightOf {
+    const float* plane;
+    float low;
+    float scale;
+    HeightOf(const State& state, int chemical, const HeightLevels& levels)
+        : plane(state.plane(chemical)), low(levels.low), scale(1.0f / (levels.high - levels.low)) {
+        assert(levels.low < levels.high);
+    }
+    float operator()(std::size_t i) const { return (plane[i] - low) * scale; }
+};
+
+// Row y of the normal map of the height field `h` (h(i): the height of cell
+// i, row-major with row 0 at the top), interleaved RGB into `out`.
+template <class Height>
+void normalRow(const Height& h, int width, int height_, int y, EdgeMode edges, float strength,
+               NormalFormat format, float* rgb) {
+    const auto at = [&](int x, int yy) {
+        x = GridDomain::wrapOrClamp(x, width, edges);
+        yy = GridDomain::wrapOrClamp(yy, height_, edges);
+        return h(std::size_t(yy) * std::size_t(width) + std::size_t(x));
+    };
+    // Green is +Y up the image for OpenGL; rows grow downwards, so the upward
+    // slope is (row above - row below) / 2.
+    const float ySign = format == NormalFormat::OpenGl ? 1.0f : -1.0f;
+    for (int x = 0; x < width; ++x) {
+        const float dx = strength * 0.5f * (at(x + 1, y) - at(x - 1, y));
+        const float dyUp = strength * 0.5f * (at(x, y - 1) - at(x, y + 1));
+        // The normal of z = s h(x, y) is (-dz/dx, -dz/dy, 1), normalised.
+        const float nx = -dx, ny = -dyUp * ySign, nz = 1.0f;
+        const float inv = 1.0f / std::sqrt(nx * nx + ny * ny + nz * nz);
+        float* out = rgb + std::size_t(x) * 3;
+        out[0] = nx * inv * 0.5f + 0.5f;
+        out[1] = ny * inv * 0.5f + 0.5f;
+        out[2] = nz * inv * 0.5f + 0.5f;
+    }
+}
+
+} // namespace
+
 std::vector<float> heightField(const State& state, int chemical, const HeightLevels& levels) {
-    assert(levels.low < levels.high);
-    const float* c = state.plane(chemical);
-    const float scale = 1.0f / (levels.high - levels.low);
+    const HeightOf height(state, chemical, levels);
     std::vector<float> h(state.cellCount());
     for (std::size_t i = 0; i < h.size(); ++i)
-        h[i] = (c[i] - levels.low) * scale;
+        h[i] = height(i);
     return h;
 }
 
 std::vector<float> normalMap(const std::vector<float>& height, int width, int height_,
                              EdgeMode edges, float strength, NormalFormat format) {
     assert(height.size() == std::size_t(width) * std::size_t(height_));
-    const auto at = [&](int x, int y) {
-        x = GridDomain::wrapOrClamp(x, width, edges);
-        y = GridDomain::wrapOrClamp(y, height_, edges);
-        return height[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-    };
-    // Green is +Y up the image for OpenGL; rows grow downwards, so the upward
-    // slope is (row above - row below) / 2.
-    const float ySign = format == NormalFormat::OpenGl ? 1.0f : -1.0f;
     std::vector<float> rgb(height.size() * 3);
+    const auto h = [&](std::size_t i) { return height[i]; };
     for (int y = 0; y < height_; ++y)
-        for (int x = 0; x < width; ++x) {
-            const float dx = strength * 0.5f * (at(x + 1, y) - at(x - 1, y));
-            const float dyUp = strength * 0.5f * (at(x, y - 1) - at(x, y + 1));
-            // The normal of z = s h(x, y) is (-dz/dx, -dz/dy, 1), normalised.
-            const float nx = -dx, ny = -dyUp * ySign, nz = 1.0f;
-            const float inv = 1.0f / std::sqrt(nx * nx + ny * ny + nz * nz);
-            float* out = &rgb[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3];
-            out[0] = nx * inv * 0.5f + 0.5f;
-            out[1] = ny * inv * 0.5f + 0.5f;
-            out[2] = nz * inv * 0.5f + 0.5f;
-        }
+        normalRow(h, width, height_, y, edges, strength, format,
+                  rgb.data() + std::size_t(y) * std::size_t(width) * 3);
     return rgb;
 }
 
@@ -150,19 +174,26 @@ void writeTextureSet(const std::string& dir, const State& state, const Session& 
     const int chemical = colormapChemical(session.colormap, session.outputModel());
     const HeightLevels levels = heightLevels(session, chemical);
 
-    writeRgbImage((d / "albedo.png").string(), applyColormap(state, chemical, session.colormap), w,
-                  hgt, 8);
-    const std::vector<float> h = heightField(state, chemical, levels);
-    writeGreyImage((d / "height.png").string(), h, w, hgt, 16);
-    State heightState(w, hgt, 1);
-    std::copy(h.begin(), h.end(), heightState.plane(0));
-    writeRawImage((d / "height.exr").string(), heightState, {"height"});
-    writeRgbImage((d / "normal.png").string(),
-                  normalMap(h, w, hgt, session.edges, session.heightMaps.normalStrength,
-                            session.heightMaps.normalFormat),
-                  w, hgt, 8);
-    writeGreyImage((d / "mask.png").string(), heightMask(h, session.heightMaps.maskThreshold), w,
-                   hgt, 8);
+    // Every map a row at a time from the state: no whole-image buffers.
+    writeColourMapped((d / "albedo.png").string(), ColourMapRows(state, chemical, session.colormap),
+                      8);
+    const HeightOf h(state, chemical, levels);
+    const auto heightRow = [&](int y, float* row) {
+        const std::size_t first = std::size_t(y) * std::size_t(w);
+        for (std::size_t x = 0; x < std::size_t(w); ++x)
+            row[x] = h(first + x);
+    };
+    writeImageRows((d / "height.png").string(), w, hgt, 1, 16, heightRow);
+    writeRawRows((d / "height.exr").string(), w, hgt, 1, {"height"}, heightRow);
+    const HeightSpec& spec = session.heightMaps;
+    writeImageRows((d / "normal.png").string(), w, hgt, 3, 8, [&](int y, float* rgb) {
+        normalRow(h, w, hgt, y, session.edges, spec.normalStrength, spec.normalFormat, rgb);
+    });
+    writeImageRows((d / "mask.png").string(), w, hgt, 1, 8, [&](int y, float* row) {
+        const std::size_t first = std::size_t(y) * std::size_t(w);
+        for (std::size_t x = 0; x < std::size_t(w); ++x)
+            row[x] = h(first + x) > spec.maskThreshold ? 1.0f : 0.0f;
+    });
     saveSessionFile(session, (d / "session.json").string());
 
     const float* c = state.plane(chemical);

@@ -10,11 +10,13 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include <omp.h>
 
 #include "core/domain/atlas.hpp"
 #include "core/domain/atlas_diagonals.hpp"
+#include "core/operators/stability.hpp"
 #include "core/sim/cpu_kernels.hpp"
 
 namespace morphogen {
@@ -189,8 +191,7 @@ void tensorMapRow(const DiffusionOperator& op, int c, const float* plane, int w,
 CpuSimulator::CpuSimulator(const Session& session)
     : m_session(session), m_model(session.reactionModel()),
       m_k(StepConstants::fromSession(session)),
-      m_current(session.width, session.height, m_k.chemicals),
-      m_next(session.width, session.height, m_k.chemicals) {
+      m_current(session.width, session.height, m_k.chemicals) {
     if (const Atlas* atlas = m_k.domain.atlasMap()) {
         for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
             if (!atlas->used(i))
@@ -207,14 +208,30 @@ CpuSimulator::CpuSimulator(const Session& session)
 }
 
 void CpuSimulator::setState(const State& state) {
-    assert(state.width() == m_current.width() && state.height() == m_current.height() &&
-           state.channels() == m_current.channels());
+    // (m_current is empty after takeState.)
+    assert(state.width() == m_session.width && state.height() == m_session.height &&
+           state.channels() == m_k.chemicals);
     m_current = state;
+}
+
+State CpuSimulator::takeState() {
+    m_next = State();
+    m_rhs = State();
+    m_tileRuns.clear();
+    return std::exchange(m_current, State());
+}
+
+std::optional<std::string> CpuSimulator::insaneValue(const ReactionModel& model) const {
+    return findInsaneValue(m_current, model);
 }
 
 void CpuSimulator::run(int steps) {
     if (runTilesApart(steps))
         return;
+    // Made on the first step, not with the simulator: while a run is being
+    // set up, its initial state and m_current are the two copies held.
+    if (m_next.cellCount() != m_current.cellCount())
+        m_next = State(m_current.width(), m_current.height(), m_current.channels());
     for (int i = 0; i < steps; ++i)
         step();
 }

@@ -21,6 +21,8 @@ public:
     std::string backendName() const override { return "cpu"; }
     void setState(const State& state) override;
     State state() const override { return m_current; }
+    State takeState() override;
+    std::optional<std::string> insaneValue(const ReactionModel& model) const override;
     void run(int steps) override;
     void setFrozen(const std::vector<std::uint8_t>& frozen) override;
     void applyBrush(const Brush& brush) override; // cpu_brush.cpp
@@ -66,7 +68,7 @@ private:
     // Kernel3/Kernel5: each chemical's taps as the generic path sums them.
     std::array<KernelTaps, kMaxChemicals> m_kernelTaps{};
     State m_current;
-    State m_next;
+    State m_next;                             // made on the first step
     State m_rhs;                              // SemiImplicit: c + dt f(c) of the step being solved
     std::vector<std::uint32_t> m_frozenCells; // indices of frozen cells (cascades)
     std::vector<std::uint8_t> m_frozenMask;   // the same cells as a mask (brush hold/release)

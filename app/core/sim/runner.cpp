@@ -62,7 +62,7 @@ RunResult runSession(const Session& session, const SimulatorFactory& makeSimulat
         if (options.progress)
             options.progress(run.position().stepsDone, run.position().totalSteps);
     }
-    RunResult result = run.result();
+    RunResult result = run.takeResult();
     result.cancelled = cancelled;
     result.settled = run.settledEarly();
     return result;

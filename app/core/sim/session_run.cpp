@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "core/base/errors.hpp"
 #include "core/base/names.hpp"
@@ -56,23 +57,27 @@ void SessionRun::enterSegment(std::size_t i) {
     // soon as they are entered.
     if (part.steps == 0)
         finishSegment(m_state);
+    else
+        m_state = State(); // the simulator holds it now: one copy of the state, not two
 }
 
 void SessionRun::finishSegment(State state) {
     m_state = std::move(state);
-    if (m_index + 1 < m_segments.size())
+    if (m_index + 1 < m_segments.size()) {
         enterSegment(m_index + 1);
-    else
+    } else {
         m_finished = true;
+        m_simulator.reset(); // its buffers or textures: the state is in m_state now
+    }
 }
 
 int SessionRun::segmentRemaining() const {
     return m_finished ? 0 : m_segments[m_index].session.steps - m_stepsRun[m_index];
 }
 
-void SessionRun::checkBlowUp(const State& state, int before) const {
+void SessionRun::checkBlowUp(int before) const {
     const Session& part = segmentSession();
-    auto problem = findInsaneValue(state, part.reactionModel());
+    auto problem = m_simulator->insaneValue(part.reactionModel());
     if (!problem)
         return;
     const int done = m_stepsRun[m_index];
@@ -124,14 +129,13 @@ int SessionRun::advance(int steps) {
         const bool blowUpCheck = m_checkEvery > 0 && now % m_checkEvery == 0;
         const bool settleCheck = settling && !end && now % m_settleEvery == 0;
         if (end || blowUpCheck || settleCheck) {
-            State state = m_simulator->state();
             const int before = m_checkEvery > 0 ? (now - 1) / m_checkEvery * m_checkEvery : 0;
-            checkBlowUp(state, before);
-            if (settleCheck && now >= m_settleAfter && m_settled(state)) {
+            checkBlowUp(before);
+            if (settleCheck && now >= m_settleAfter && m_settled(m_simulator->state())) {
                 m_settledEarly = true;
-                finishSegment(std::move(state));
+                finishSegment(m_simulator->takeState());
             } else if (end) {
-                finishSegment(std::move(state));
+                finishSegment(m_simulator->takeState());
             }
         }
     }
@@ -140,7 +144,7 @@ int SessionRun::advance(int steps) {
 
 void SessionRun::endSegment() {
     if (!m_finished)
-        finishSegment(m_simulator->state());
+        finishSegment(m_simulator->takeState());
 }
 
 RunPosition SessionRun::position() const {
@@ -216,9 +220,17 @@ Session SessionRun::completed() const {
 }
 
 RunResult SessionRun::result() const {
+    return resultWith(state());
+}
+
+RunResult SessionRun::takeResult() {
+    return resultWith(m_finished ? std::exchange(m_state, State()) : m_simulator->state());
+}
+
+RunResult SessionRun::resultWith(State state) const {
     RunResult r;
     r.stepsDone = m_stepsDone;
-    r.state = state();
+    r.state = std::move(state);
     // A run stopped on a coarse level leaves a coarse state: bring it to the final size.
     if (r.state.width() != m_session.width || r.state.height() != m_session.height)
         r.state = resampleBilinear(r.state, m_session.width, m_session.height, m_session.edges);

@@ -62,7 +62,8 @@ public:
     int segmentRemaining() const;
 
     // The current segment's simulator (for live changes and display) and the
-    // session it runs as.
+    // session it runs as. A finished run has released its simulator (only
+    // the final state is held): simulator() is for runs not finished.
     Simulator& simulator() { return *m_simulator; }
     const Session& segmentSession() const { return m_segments[m_index].session; }
 
@@ -77,6 +78,9 @@ public:
     // completed() and the state, resampled to the session's final size when a
     // run stopped on a coarse level.
     RunResult result() const;
+    // result(), the final state moved out rather than copied (a big render
+    // holds one copy at the end): the run is spent, state() is empty after.
+    RunResult takeResult();
 
     // Live changes to the current segment, from the next step on: the
     // simulator updates its constants (uniforms on the GPU, no rebuild).
@@ -95,9 +99,11 @@ public:
 
 private:
     void enterSegment(std::size_t index);
-    void checkBlowUp(const State& state, int before) const;
+    // Reads the simulator's state in place (Simulator::insaneValue).
+    void checkBlowUp(int before) const;
     bool inSettleSegment() const;
     void finishSegment(State state);
+    RunResult resultWith(State state) const;
 
     Session m_session;
     SimulatorFactory m_make;
@@ -107,8 +113,10 @@ private:
     std::vector<int> m_stepsRun; // per segment entered
     int m_stepsDone = 0;
     bool m_finished = false;
-    std::unique_ptr<Simulator> m_simulator;
-    State m_state; // the state between segments (the simulator holds it inside one)
+    std::unique_ptr<Simulator> m_simulator; // null once finished
+    // The state between segments and at the end; empty inside a segment,
+    // where the simulator holds it (a big render keeps one copy, not two).
+    State m_state;
     std::vector<std::uint8_t> m_frozen;
     const ReactionModel* m_stateModel = nullptr; // the model m_state holds
     int m_settleEvery = 0; // in steps of the settle segment (session steps x substeps)

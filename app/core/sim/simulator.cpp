@@ -213,4 +213,8 @@ bool updateLiveConstants(StepConstants& k, const Session& session) {
     return true;
 }
 
+std::optional<std::string> Simulator::insaneValue(const ReactionModel& model) const {
+    return findInsaneValue(state(), model);
+}
+
 } // namespace morphogen

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,13 @@ public:
     virtual std::string backendName() const = 0;
     virtual void setState(const State& state) = 0;
     virtual State state() const = 0;
+    // The state, leaving the simulator without one: it must be given one
+    // (setState) before it runs again. A big render's last read-back: the
+    // CPU backend hands over its buffer and frees its scratch (no copy).
+    virtual State takeState() { return state(); }
+    // findInsaneValue of the current state, read in place (CPU) or a band of
+    // rows at a time (GPU): a blow-up check makes no whole copy of the state.
+    virtual std::optional<std::string> insaneValue(const ReactionModel& model) const;
     virtual void run(int steps) = 0;
     // Cells marked 1 keep their values exactly (still feeding their
     // neighbours' diffusion); empty: none. Turk's cascades.

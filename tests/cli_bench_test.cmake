@@ -1,0 +1,68 @@
+# bench's memory rows end to end: each render runs in its own process and
+# reports its peak memory; the row's growth above a 16x16 render, over the
+# state it simulates, must be near what the render holds (two state buffers on
+# the CPU: about 2), not 0 (a peak that is the bench's own, as wait4's
+# ru_maxrss would give) and not a copy too many.
+# Run by ctest: cmake -DMORPHOGEN=... -DWORK=... -P cli_bench_test.cmake
+
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+
+execute_process(COMMAND ${MORPHOGEN} bench --memory-sizes 3
+  RESULT_VARIABLE rc ERROR_VARIABLE err WORKING_DIRECTORY "${WORK}")
+string(FIND "${err}" "--memory-sizes '3': '3' is not a size" at)
+if(NOT rc EQUAL 2 OR at EQUAL -1)
+  message(SEND_ERROR "bench --memory-sizes 3: want exit 2 naming the flag, got exit ${rc}: ${err}")
+endif()
+
+# The other rows at their smallest: throughput at 16x16, no domains or convergence.
+execute_process(COMMAND ${MORPHOGEN} bench --sizes 16 --operator-sizes 16 --seconds 0.01
+  --no-domains --no-convergence --memory-sizes 1024 --json bench.json
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err WORKING_DIRECTORY "${WORK}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "bench with memory rows: exit ${rc}\n${err}")
+endif()
+string(FIND "${out}" "growth/state" at)
+if(at EQUAL -1)
+  message(SEND_ERROR "bench prints no memory table:\n${out}")
+endif()
+
+file(READ "${WORK}/bench.json" report)
+string(JSON rows ERROR_VARIABLE json_error LENGTH "${report}" memory)
+if(json_error OR rows LESS 1)
+  message(FATAL_ERROR "bench.json has no memory rows: ${json_error}")
+endif()
+set(cpu_rows 0)
+math(EXPR last "${rows} - 1")
+foreach(i RANGE ${last})
+  string(JSON backend GET "${report}" memory ${i} backend)
+  string(JSON size GET "${report}" memory ${i} size)
+  string(JSON state GET "${report}" memory ${i} state_mb)
+  string(JSON peak ERROR_VARIABLE row_error GET "${report}" memory ${i} peak_rss_mb)
+  string(JSON growth ERROR_VARIABLE row_error GET "${report}" memory ${i} growth_over_state)
+  if(row_error)
+    string(JSON why ERROR_VARIABLE none GET "${report}" memory ${i} error)
+    message(SEND_ERROR "memory row ${i} (${backend} ${size}) has no figures: ${why}")
+    continue()
+  endif()
+  # 1024 x 1024 x 2 chemicals x 4 bytes
+  if(NOT size EQUAL 1024 OR NOT state GREATER 8.38 OR NOT state LESS 8.39)
+    message(SEND_ERROR "memory row ${i}: size ${size}, state ${state} MB (want 1024, 8.39 MB)")
+  endif()
+  if(backend STREQUAL "cpu")
+    math(EXPR cpu_rows "${cpu_rows} + 1")
+    if(NOT growth GREATER 0.5 OR NOT growth LESS 4)
+      message(SEND_ERROR "cpu render at 1024: peak ${peak} MB, growth over the state ${growth} (want 0.5 to 4)")
+    else()
+      message(STATUS "ok: cpu render at 1024: peak ${peak} MB, growth over the state ${growth}")
+    endif()
+  elseif(NOT growth GREATER 0.5 OR NOT growth LESS 10)
+    # The GPU driver's own memory counts too (llvmpipe keeps textures in ours).
+    message(SEND_ERROR "${backend} render at 1024: peak ${peak} MB, growth over the state ${growth} (want 0.5 to 10)")
+  else()
+    message(STATUS "ok: ${backend} render at 1024: peak ${peak} MB, growth over the state ${growth}")
+  endif()
+endforeach()
+if(NOT cpu_rows EQUAL 1)
+  message(SEND_ERROR "want one cpu memory row, got ${cpu_rows}")
+endif()
