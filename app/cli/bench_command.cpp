@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/bench_domains.hpp"
+#include "cli/bench_resolution.hpp"
 #include "cli/bench_timing.hpp"
 #include "cli/commands.hpp"
 #include "core/analysis/pattern_stats.hpp"
@@ -37,6 +38,9 @@ struct BenchFlags {
     int convergenceSize = 1024;
     bool noConvergence = false;
     bool noDomains = false;
+    bool noResolution = false;
+    bool noThroughput = false;
+    ResolutionBenchFlags resolution;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -160,6 +164,8 @@ void checkFlags(const BenchFlags& f) {
     if (f.convergenceSize < 32 || f.convergenceSize > kMaxGridSide || f.convergenceSize % 2 != 0)
         throw InputError("--convergence-size " + std::to_string(f.convergenceSize) +
                          ": accepted are even sizes in 32.." + std::to_string(kMaxGridSide));
+    if (!f.noResolution)
+        checkResolutionFlags(f.resolution);
 }
 
 // The headless context of the GPU rows, described in the report; null (GPU
@@ -329,15 +335,23 @@ void bench(const BenchFlags& f) {
     report["preset"] = base.name;
     report["model"] = base.model;
     report["seconds_per_measurement"] = f.seconds;
-    const std::unique_ptr<gl::Context> context = openContext(f, report);
+    // The throughput and domain rows measure the GPU on this context; the
+    // later sections pick their own backend.
+    std::unique_ptr<gl::Context> context;
+    if (!f.noThroughput || !f.noDomains)
+        context = openContext(f, report);
     const bool gpuRows = context != nullptr;
 
-    report["results"] = throughputRows(base, f, gpuRows);
-    report["operators"] = operatorRows(base, f, gpuRows);
+    if (!f.noThroughput) {
+        report["results"] = throughputRows(base, f, gpuRows);
+        report["operators"] = operatorRows(base, f, gpuRows);
+    }
     if (!f.noDomains)
         report["domains"] = benchDomains(gpuRows, !f.noCpu, f.seconds);
     if (!f.noConvergence)
         report["convergence"] = convergenceRows(f);
+    if (!f.noResolution)
+        report["resolution"] = benchResolution(f.resolution, f.context, f.gpuDevice);
     if (!f.json.empty())
         writeJson(f.json, report);
 }
@@ -358,12 +372,26 @@ void addBenchCommand(CLI::App& app) {
         "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
     cmd->add_option("--seconds", flags->seconds, "time per measurement (default 1)");
     cmd->add_flag("--no-cpu", flags->noCpu, "skip the CPU backend");
+    cmd->add_flag("--no-throughput", flags->noThroughput,
+                  "skip the step-throughput and operator rows");
     cmd->add_option("--operator-sizes", flags->operatorSizes,
                     "sizes for the 5-point / 3x3 / 5x5 operator comparison (default 512,1024)");
     cmd->add_option("--convergence-size", flags->convergenceSize,
                     "grid size for time-to-converged-pattern (default 1024)");
     cmd->add_flag("--no-convergence", flags->noConvergence, "skip time-to-converged-pattern");
     cmd->add_flag("--no-domains", flags->noDomains, "skip the atlas and batched-sweep rows");
+    cmd->add_flag("--no-resolution", flags->noResolution,
+                  "skip the same-look-at-any-size rows (presets rendered until settled at "
+                  "--resolution-sizes)");
+    cmd->add_option("--resolution-sizes", flags->resolution.sizes,
+                    "sizes the presets are rendered at, each a multiple of the smallest "
+                    "(default 256,512,1024,2048)");
+    cmd->add_option("--resolution-presets", flags->resolution.presets,
+                    "presets rendered at every resolution size (default "
+                    "turk_large_spots,wk_zebra,turk_leopard: spots, stripes, a cascade)");
+    cmd->add_option("--resolution-compare-size", flags->resolution.compareSize,
+                    "size at which the first resolution preset, refined coarse-to-fine, is "
+                    "compared with every step at that size (default 512; 0 skips it)");
     cmd->callback([flags] { bench(*flags); });
 }
 
