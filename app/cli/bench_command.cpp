@@ -1,6 +1,7 @@
 // morphogen bench: throughput of the GPU step against a same-format copy pass
 // on the same context (the ratio is the figure: it cancels the machine's
-// speed), and of the CPU backend, at several grid sizes.
+// speed), and of the CPU backend, at several grid sizes; then the domain,
+// convergence and resolution sections.
 
 #include <chrono>
 #include <cstdio>
@@ -362,7 +363,8 @@ void addBenchCommand(CLI::App& app) {
     auto flags = std::make_shared<BenchFlags>();
     CLI::App* cmd = app.add_subcommand(
         "bench",
-        "Measure step throughput: GPU step vs a same-format copy pass, and the CPU backend");
+        "Measure step throughput (GPU step vs a same-format copy pass, and the CPU backend), "
+        "time to a converged pattern, and presets rendered at several sizes");
     cmd->add_option("--json", flags->json, "also write the results as JSON to this file");
     cmd->add_option("--sizes", flags->sizes, "comma-separated grid sizes (default 256,512,1024)");
     cmd->add_option("--preset", flags->preset, "preset whose model is measured (default gs_coral)");

@@ -323,6 +323,8 @@ nlohmann::json benchResolution(const ResolutionBenchFlags& flags, const std::str
                              {"sizes", sizes},
                              {"wavelength", "dominantWavelength (spectrum peak) x cell size, in "
                                             "model units; quantised to length / whole cycles"},
+                             {"steps", "steps run, each of its own level's dt: a substep "
+                                       "counts as one"},
                              {"presets", rows}};
     if (flags.compareSize > 0) {
         const auto at = std::find(sizes.begin(), sizes.end(), flags.compareSize);
