@@ -290,6 +290,10 @@ nlohmann::json convergenceRows(const BenchFlags& f) {
     const int n = f.convergenceSize;
     Session flat = loadPreset("turk_large_spots");
     flat.width = flat.height = n;
+    // One unit per cell, as these rows measured before sessions had a length:
+    // the methods compared on the same cells, not the automatic plan (whose
+    // refinement the resolution section measures).
+    flat.length = n;
     gl::Backend backend = gl::makeBackend(gl::BackendChoice::Auto, gl::parseContextFlag(f.context),
                                           gl::parseGpuDeviceFlag(f.gpuDevice));
     std::fprintf(stderr, "bench: convergence on the %s\n", backend.reason.c_str());
