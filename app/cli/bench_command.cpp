@@ -1,7 +1,8 @@
 // morphogen bench: throughput of the GPU step against a same-format copy pass
 // on the same context (the ratio is the figure: it cancels the machine's
-// speed), and of the CPU backend, at several grid sizes; and the peak memory
-// of renders against the state they simulate (bench_memory.hpp).
+// speed), and of the CPU backend, at several grid sizes; then the domain,
+// convergence and resolution sections, and the peak memory of renders
+// against the state they simulate (bench_memory.hpp).
 
 #include <chrono>
 #include <cstdio>
@@ -12,6 +13,7 @@
 
 #include "cli/bench_domains.hpp"
 #include "cli/bench_memory.hpp"
+#include "cli/bench_resolution.hpp"
 #include "cli/bench_timing.hpp"
 #include "cli/commands.hpp"
 #include "core/analysis/pattern_stats.hpp"
@@ -41,6 +43,9 @@ struct BenchFlags {
     bool noDomains = false;
     std::string memorySizes = "1024,2048,4096";
     bool noMemory = false;
+    bool noResolution = false;
+    bool noThroughput = false;
+    ResolutionBenchFlags resolution;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -165,6 +170,8 @@ void checkFlags(const BenchFlags& f) {
     if (f.convergenceSize < 32 || f.convergenceSize > kMaxGridSide || f.convergenceSize % 2 != 0)
         throw InputError("--convergence-size " + std::to_string(f.convergenceSize) +
                          ": accepted are even sizes in 32.." + std::to_string(kMaxGridSide));
+    if (!f.noResolution)
+        checkResolutionFlags(f.resolution);
 }
 
 // The headless context of the GPU rows, described in the report; null (GPU
@@ -288,6 +295,10 @@ nlohmann::json convergenceRows(const BenchFlags& f) {
     const int n = f.convergenceSize;
     Session flat = loadPreset("turk_large_spots");
     flat.width = flat.height = n;
+    // One unit per cell, as these rows measured before sessions had a length:
+    // the methods compared on the same cells, not the automatic plan (whose
+    // refinement the resolution section measures).
+    flat.length = n;
     gl::Backend backend = gl::makeBackend(gl::BackendChoice::Auto, gl::parseContextFlag(f.context),
                                           gl::parseGpuDeviceFlag(f.gpuDevice));
     std::fprintf(stderr, "bench: convergence on the %s\n", backend.reason.c_str());
@@ -334,11 +345,17 @@ void bench(const BenchFlags& f) {
     report["preset"] = base.name;
     report["model"] = base.model;
     report["seconds_per_measurement"] = f.seconds;
-    const std::unique_ptr<gl::Context> context = openContext(f, report);
+    // The throughput and domain rows measure the GPU on this context; the
+    // later sections pick their own backend.
+    std::unique_ptr<gl::Context> context;
+    if (!f.noThroughput || !f.noDomains)
+        context = openContext(f, report);
     const bool gpuRows = context != nullptr;
 
-    report["results"] = throughputRows(base, f, gpuRows);
-    report["operators"] = operatorRows(base, f, gpuRows);
+    if (!f.noThroughput) {
+        report["results"] = throughputRows(base, f, gpuRows);
+        report["operators"] = operatorRows(base, f, gpuRows);
+    }
     if (!f.noDomains)
         report["domains"] = benchDomains(gpuRows, !f.noCpu, f.seconds);
     if (!f.noConvergence)
@@ -352,6 +369,8 @@ void bench(const BenchFlags& f) {
             memory.backends.push_back("gpu");
         report["memory"] = benchMemory(memory);
     }
+    if (!f.noResolution)
+        report["resolution"] = benchResolution(f.resolution, f.context, f.gpuDevice);
     if (!f.json.empty())
         writeJson(f.json, report);
 }
@@ -362,8 +381,9 @@ void addBenchCommand(CLI::App& app) {
     auto flags = std::make_shared<BenchFlags>();
     CLI::App* cmd = app.add_subcommand(
         "bench",
-        "Measure step throughput (GPU step vs a same-format copy pass, and the CPU backend) and "
-        "the peak memory of renders");
+        "Measure step throughput (GPU step vs a same-format copy pass, and the CPU backend), "
+        "time to a converged pattern, presets rendered at several sizes, and the peak memory "
+        "of renders");
     cmd->add_option("--json", flags->json, "also write the results as JSON to this file");
     cmd->add_option("--sizes", flags->sizes, "comma-separated grid sizes (default 256,512,1024)");
     cmd->add_option("--preset", flags->preset, "preset whose model is measured (default gs_coral)");
@@ -373,6 +393,8 @@ void addBenchCommand(CLI::App& app) {
         "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
     cmd->add_option("--seconds", flags->seconds, "time per measurement (default 1)");
     cmd->add_flag("--no-cpu", flags->noCpu, "skip the CPU backend");
+    cmd->add_flag("--no-throughput", flags->noThroughput,
+                  "skip the step-throughput and operator rows");
     cmd->add_option("--operator-sizes", flags->operatorSizes,
                     "sizes for the 5-point / 3x3 / 5x5 operator comparison (default 512,1024)");
     cmd->add_option("--convergence-size", flags->convergenceSize,
@@ -382,6 +404,18 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--memory-sizes", flags->memorySizes,
                     "sizes of the peak-memory renders, one process each (default 1024,2048,4096)");
     cmd->add_flag("--no-memory", flags->noMemory, "skip the peak-memory rows");
+    cmd->add_flag("--no-resolution", flags->noResolution,
+                  "skip the same-look-at-any-size rows (presets rendered until settled at "
+                  "--resolution-sizes)");
+    cmd->add_option("--resolution-sizes", flags->resolution.sizes,
+                    "sizes the presets are rendered at, each a multiple of the smallest "
+                    "(default 256,512,1024,2048)");
+    cmd->add_option("--resolution-presets", flags->resolution.presets,
+                    "presets rendered at every resolution size (default "
+                    "turk_large_spots,wk_zebra,turk_leopard: spots, stripes, a cascade)");
+    cmd->add_option("--resolution-compare-size", flags->resolution.compareSize,
+                    "size at which the first resolution preset, refined coarse-to-fine, is "
+                    "compared with every step at that size (default 512; 0 skips it)");
     cmd->callback([flags] { bench(*flags); });
 }
 
