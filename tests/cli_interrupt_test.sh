@@ -104,6 +104,9 @@ start_and_stop_in_write() {
 cp big.png old.png && cp big.json old.json
 
 # SIGTERM during the write: the process ends, its temporaries go, the old files stay.
+# No file of any name is left behind (OpenImageIO's own temporaries neither).
+listing() { ls -A | grep -v '^stderr.txt$'; }
+before=$(listing)
 start_and_stop_in_write
 kill -TERM "$pid"
 kill -CONT "$pid"
@@ -111,6 +114,7 @@ wait "$pid"
 rc=$?
 [ "$rc" -eq 143 ] || fail "SIGTERM during the write: exit code $rc, expected 143"
 [ -z "$(temporaries)" ] || fail "SIGTERM during the write left temporaries: $(temporaries)"
+[ "$(listing)" = "$before" ] || fail "SIGTERM during the write left files: $(listing)"
 cmp -s big.png old.png && cmp -s big.json old.json ||
   fail "SIGTERM during the write changed the previous image or session"
 echo "ok: SIGTERM during the write left no temporaries and the previous files"
@@ -132,6 +136,7 @@ wait "$pid"
 rc=$?
 [ "$rc" -eq 130 ] || fail "a second Ctrl-C during the write: exit code $rc, expected 130"
 [ -z "$(temporaries)" ] || fail "a second Ctrl-C during the write left temporaries: $(temporaries)"
+[ "$(listing)" = "$before" ] || fail "a second Ctrl-C during the write left files: $(listing)"
 cmp -s big.png old.png && cmp -s big.json old.json ||
   fail "a second Ctrl-C during the write changed the previous image or session"
 echo "ok: a second Ctrl-C during the write left no temporaries and the previous files"
