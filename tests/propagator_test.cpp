@@ -77,3 +77,19 @@ TEST(Propagator, PlotIsDrawn) {
         red += rgb[i] > 0.6f && rgb[i + 1] < 0.4f;
     EXPECT_GT(red, 200);
 }
+
+TEST(Propagator, AnEmptyPlotIsNotIsotropic) {
+    // At a radius far out in the tails the density underflows to 0 everywhere:
+    // nothing to plot, and no direction to read (not "isotropic").
+    const Propagator p(tableTwoSet('c'), 0.1);
+    EXPECT_EQ(angularShape(sampleAngular(p, 100.0)), AngularShape::Empty);
+    EXPECT_EQ(angularShape(std::vector<double>(360, -1e-3)), AngularShape::Empty);
+    std::vector<double> withNan(360, 1.0);
+    withNan[7] = std::nan("");
+    EXPECT_EQ(angularShape(withNan), AngularShape::Empty);
+    EXPECT_EQ(angularShape(sampleAngular(Propagator(tableTwoSet('a'), 0.1), 1.0)),
+              AngularShape::Isotropic);
+    EXPECT_EQ(angularShape(sampleAngular(p, 1.0)), AngularShape::Directional);
+    // The width the message suggests radii from: sqrt(2 tau D2) for D2 = I.
+    EXPECT_NEAR(Propagator(tableTwoSet('a'), 0.1).width(), std::sqrt(0.2), 1e-12);
+}

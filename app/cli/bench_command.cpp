@@ -6,7 +6,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -18,6 +17,8 @@
 #include "cli/commands.hpp"
 #include "core/analysis/pattern_stats.hpp"
 #include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/io/output_files.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/session/session.hpp"
 #include "core/sim/cpu_simulator.hpp"
@@ -332,14 +333,13 @@ nlohmann::json convergenceRows(const BenchFlags& f) {
 }
 
 void writeJson(const std::string& path, const nlohmann::json& report) {
-    std::ofstream out(path);
-    if (!out)
-        throw InputError(path + ": cannot write the benchmark JSON");
-    out << report.dump(2) << "\n";
+    writeTextAtomically(path, report.dump(2) + "\n");
 }
 
 void bench(const BenchFlags& f) {
     checkFlags(f);
+    if (!f.json.empty())
+        checkWritable(f.json); // before minutes of benchmarking, not after
     const Session base = loadPreset(f.preset);
     nlohmann::json report;
     report["preset"] = base.name;

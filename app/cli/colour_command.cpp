@@ -10,6 +10,7 @@
 
 #include "cli/colour_flags.hpp"
 #include "cli/commands.hpp"
+#include "core/analysis/result_checks.hpp"
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
@@ -95,6 +96,16 @@ void colour(const ColourFlags& f) {
 
     const RawImage raw = readRawImage(f.raw);
     const State state = modelOrdered(raw, model, f.raw, sessionPath);
+    std::vector<std::string> names;
+    for (const ChemicalSpec& c : model.chemicals())
+        names.push_back(c.name);
+    // NaN cells would be painted the low colour, a pattern that is not there.
+    if (const auto bad = describeNonFinite(state, names))
+        throw InputError(f.raw + ": " + *bad +
+                         "; accepted: a finite state, as render writes (it refuses a blow-up)");
+    if (const auto flat = describeFlatChannel(state, chemical, names[std::size_t(chemical)]))
+        std::fprintf(stderr, "morphogen: warning: %s: %s, so the image is one colour\n",
+                     f.raw.c_str(), flat->c_str());
     writeColourMapped(f.out, ColourMapRows(state, chemical, spec), f.bitDepth);
     std::printf("%s\n", f.out.c_str());
 }

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <unistd.h>
@@ -15,6 +14,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/names.hpp"
 #include "core/io/image_io.hpp"
+#include "core/io/output_files.hpp"
 #include "core/session/session.hpp"
 #include "core/sim/runner.hpp"
 #include "gl/backend.hpp"
@@ -244,15 +244,7 @@ a { color: #8cf; }
     html << "</div>\n</body>\n</html>\n";
 
     // Temporary file and rename: an interrupted write never leaves half a page.
-    const fs::path path = fs::path(dir) / "index.html";
-    const fs::path tmp = fs::path(dir) / "index.html.tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << html.str();
-        if (!out.flush())
-            throw std::runtime_error("cannot write " + tmp.string());
-    }
-    fs::rename(tmp, path);
+    writeTextAtomically((fs::path(dir) / "index.html").string(), html.str());
 }
 
 // Runs one preset and writes its image and session; a failure is recorded in
@@ -280,7 +272,9 @@ Entry runPreset(const Session& preset, const GalleryFlags& f, const gl::Backend&
         entry.seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const fs::path base = fs::path(f.dir) / entry.session.name;
-        writeRenderOutput(result, base.string() + ".png", base.string() + ".json", 8);
+        OutputFiles files; // the image and its session replace the previous pair together
+        writeRenderOutput(result, base.string() + ".png", base.string() + ".json", 8, files);
+        files.commit();
         entry.session = result.completed;
     } catch (const std::exception& e) {
         entry.seconds =
@@ -318,7 +312,7 @@ void gallery(const GalleryFlags& f) {
     {
         const InterruptGuard interrupt(
             "\nmorphogen: interrupted: finishing the current preset, then writing index.html "
-            "(Ctrl-C again to quit now)\n");
+            "(Ctrl-C again, a second or more later, to quit now)\n");
         for (int i = 0; i < total && !interrupt.cancelled(); ++i) {
             const std::string label = "gallery " + std::to_string(i + 1) + "/" +
                                       std::to_string(total) + " " + presets[std::size_t(i)].name;

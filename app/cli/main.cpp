@@ -5,10 +5,12 @@
 
 #include "cli/bench_memory.hpp"
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "core/base/errors.hpp"
 
 int main(int argc, char** argv) {
     morphogen::cli::writePeakMemoryAtExit(); // for `bench`'s memory rows, when they ask
+    morphogen::cli::installSignalHandlers(); // an interrupted write leaves no temporaries
     CLI::App app{"Morphogen: reaction-diffusion textures (Turing, Gray-Scott) on the GPU or CPU",
                  "morphogen"};
     app.require_subcommand(1);

@@ -17,6 +17,7 @@
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/io/output_files.hpp"
 #include "core/output/colormap.hpp"
 #include "core/session/session.hpp"
 #include "core/sim/runner.hpp"
@@ -127,6 +128,7 @@ MapPlan planMap(const MapFlags& f) {
 
 // The map with the y axis on the left, the x axis below and a title.
 void writeMapPlot(const std::string& path, const MapPlan& plan, const RunResult& result) {
+    requireFinite(result);
     const Session& s = plan.session;
     const ReactionModel& model = s.reactionModel();
     // Fewer x ticks until their labels no longer touch (small maps, long labels).
@@ -191,10 +193,12 @@ void map(const MapFlags& f) {
     const RunResult result = runSession(s, backend.makeSimulator, options);
     progress.finish("done: " + std::to_string(result.stepsDone) + " steps");
 
-    writeMapPlot(f.out, plan, result);
     std::filesystem::path sessionPath(f.out);
     sessionPath.replace_extension(".json");
-    saveSessionFile(result.completed, sessionPath.string());
+    OutputFiles files; // the map and its session replace the previous pair together
+    writeMapPlot(files.stage(f.out), plan, result);
+    saveSessionFile(result.completed, files.stage(sessionPath.string()));
+    files.commit();
     std::printf("%s\n%s\n", f.out.c_str(), sessionPath.string().c_str());
 }
 

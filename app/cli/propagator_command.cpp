@@ -3,6 +3,7 @@
 // orientations the texture will prefer) on stdout and the operator's explicit
 // stability on stderr.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -29,7 +30,7 @@ struct PropagatorFlags {
 
 std::string formatPeaks(const std::vector<double>& peaks) {
     if (peaks.empty())
-        return "peaks (degrees): none (isotropic)";
+        return "peaks (degrees): none (isotropic)"; // angularShape said so
     std::ostringstream os;
     os << "peaks (degrees):";
     for (double p : peaks) {
@@ -53,6 +54,19 @@ void propagator(const PropagatorFlags& f) {
 
     const Propagator p(sequence, f.tau);
     const std::vector<double> samples = sampleAngular(p, f.radius);
+    if (angularShape(samples) == AngularShape::Empty) {
+        std::ostringstream os;
+        os << "--radius " << f.radius << " at --tau " << f.tau
+           << ": the propagator has no positive value on that circle (it is "
+           << (std::all_of(samples.begin(), samples.end(),
+                           [](double v) { return std::isfinite(v); })
+                   ? "below double precision or negative"
+                   : "not finite")
+           << " there), so the plot would be empty and show no direction; accepted: a radius "
+              "of about 1 to 3 times the Gaussian's width, here "
+           << p.width() << " (e.g. --radius " << 2 * p.width() << ")";
+        throw InputError(os.str());
+    }
     writeRgbImage(f.out, renderPolarPlot(samples, f.size), f.size, f.size, 8);
     std::printf("%s\n", formatPeaks(findAngularPeaks(samples)).c_str());
 

@@ -16,6 +16,7 @@
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/io/output_files.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/output/colormap.hpp"
 #include "core/output/frames.hpp"
@@ -251,19 +252,32 @@ void render(const RenderFlags& flags) {
 
     Progress progress("render " + (session.name.empty() ? std::string("session") : session.name),
                       sessionTotalSteps(session));
+    // Ctrl-C stops the run after the current chunk; the guard stays through the writing, so a
+    // Ctrl-C then lets the files finish. Every file goes to a temporary first and is renamed into
+    // place only once all are written (core/io/output_files.hpp): frames, then the texture set,
+    // the image and last the session, the record of what the others show. A failure or a fatal
+    // signal before that removes the temporaries and leaves the previous files untouched.
+    InterruptGuard interrupt(
+        "\nmorphogen: interrupted: stopping after the current chunk, then writing what is "
+        "finished (Ctrl-C again, a second or more later, quits at once and writes nothing)\n");
+    std::optional<StagedSequence> frames;
+    if (f.frames.wanted())
+        frames.emplace(f.frames.dir, "frame_", ".png");
     RunResult result;
     {
-        const InterruptGuard interrupt;
         RunOptions options;
         options.progress = [&](int done, int) { progress.update(done); };
         options.cancel = interrupt.flag();
         options.chunk = runChunk(session);
         settle.attach(options, progress);
-        result = f.frames.wanted() ? renderFrames(session, backend.makeSimulator, options, f.frames)
-                                   : runSession(session, backend.makeSimulator, options);
+        result = frames ? renderFrames(session, backend.makeSimulator, options, f.frames, *frames)
+                        : runSession(session, backend.makeSimulator, options);
     }
+    const bool cancelled = result.cancelled;
+    interrupt.setNotice("\nmorphogen: interrupted while writing: finishing the files (Ctrl-C "
+                        "again, a second or more later, quits and keeps the previous files)\n");
 
-    if (result.cancelled) {
+    if (cancelled) {
         progress.finish("interrupted after " + std::to_string(result.stepsDone) +
                         " steps; writing what is finished");
     } else {
@@ -273,20 +287,33 @@ void render(const RenderFlags& flags) {
     const std::string settled = settle.summary(result, warning);
     if (!settled.empty())
         std::fprintf(stderr, "morphogen: %s%s\n", warning ? "warning: " : "", settled.c_str());
+    requireFinite(result);
+    warnIfFlat(result);
 
-    if (image) {
-        writeRenderOutput(result, f.out, sessionOut, f.bitDepth);
-        std::printf("%s\n%s\n", f.out.c_str(), sessionOut.c_str());
-    } else if (!sessionOut.empty()) {
-        saveSessionFile(result.completed, sessionOut);
+    OutputFiles files;
+    writeTextureSetOutput(result, f.textureSet, files);
+    if (image)
+        writeRenderOutput(result, f.out, sessionOut, f.bitDepth, files);
+    else if (!sessionOut.empty())
+        saveSessionFile(result.completed, files.stage(sessionOut));
+    if (frames)
+        frames->commit();
+    files.commit();
+    if (image)
+        std::printf("%s\n", f.out.c_str());
+    if (!sessionOut.empty())
         std::printf("%s\n", sessionOut.c_str());
-    }
-    writeTextureSetOutput(result, f.textureSet);
-    if (f.frames.wanted() && !result.cancelled)
+    if (!f.textureSet.dir.empty())
+        std::printf(
+            "%s\n",
+            (std::filesystem::path(f.textureSet.dir) / "texture_set.json").string().c_str());
+    if (frames && !cancelled)
         encodeVideo(f.frames);
-    if (result.cancelled)
+    if (cancelled)
         throw std::runtime_error("interrupted; wrote the state after " +
                                  std::to_string(result.stepsDone) + " steps");
+    if (interrupt.cancelled())
+        std::fprintf(stderr, "morphogen: the run had finished; its files are complete\n");
 }
 
 } // namespace

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -13,6 +12,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/operators/stability.hpp"
 #include "core/output/colormap.hpp"
 #include "core/output/frames.hpp"
 
@@ -56,14 +56,10 @@ void prepareFrames(FrameFlags& flags, const std::string& out, const Session& ses
     if (ec || !fs::is_directory(flags.dir))
         throw InputError("--frames-dir '" + flags.dir + "' cannot be created: " + ec.message());
     checkWritable(framePath(flags.dir, 0));
-    static const std::regex frameName("frame_[0-9]{5}\\.png");
-    for (const fs::directory_entry& e : fs::directory_iterator(flags.dir))
-        if (e.is_regular_file() && std::regex_match(e.path().filename().string(), frameName))
-            fs::remove(e.path());
 }
 
 RunResult renderFrames(const Session& session, const SimulatorFactory& makeSimulator,
-                       const RunOptions& options, const FrameFlags& flags) {
+                       const RunOptions& options, const FrameFlags& flags, StagedSequence& frames) {
     const std::vector<int> steps =
         frameSteps(sessionTotalSteps(session), flags.frames, flags.every);
     // Levels from the final model (a cascade may change models), fixed for every frame.
@@ -72,12 +68,24 @@ RunResult renderFrames(const Session& session, const SimulatorFactory& makeSimul
         frameLevels(model, colormapChemical(session.colormap, model), flags.range);
     std::fprintf(stderr, "morphogen: %zu frames into %s, levels %g:%g (%s)\n", steps.size(),
                  flags.dir.c_str(), double(levels.low), double(levels.high), levels.source.c_str());
+    int checkedStep = 0; // the last frame's step: its state was sane
     const FrameSink write = [&](int index, const RunResult& sofar) {
         const ReactionModel& m = sofar.completed.outputModel();
-        writeColourMapped(framePath(flags.dir, index),
+        // A frame can fall between the run's blow-up checks: check it before it is drawn.
+        if (const auto problem = findInsaneValue(sofar.state, m)) {
+            const float dt = suggestDt(sofar.completed);
+            std::ostringstream os;
+            os << "the simulation blew up between step " << checkedStep + 1 << " and step "
+               << sofar.stepsDone << " (" << *problem << ", in frame " << index << ", dt "
+               << sofar.completed.dt << "); try a smaller time step such as --dt " << dt;
+            throw BlowUpError(os.str(), sofar.stepsDone, dt);
+        }
+        checkedStep = sofar.stepsDone;
+        writeColourMapped(frames.path(index),
                           ColourMapRows(sofar.state, colormapChemical(session.colormap, m),
                                         session.colormap, levels.low, levels.high),
                           8);
+        frames.written(index);
     };
     return runWithFrames(session, makeSimulator, options, steps, write);
 }
@@ -112,10 +120,12 @@ void encodeVideo(const FrameFlags& flags) {
         return;
     }
     std::fprintf(stderr, "morphogen: %s\n", command.c_str());
-    const int status = std::system(command.c_str());
-    if (status != 0)
-        throw std::runtime_error("ffmpeg failed (status " + std::to_string(status) +
-                                 "); the frames are in " + flags.dir);
+    writeFileAtomically(flags.video, [&](const std::string& temporary) {
+        const int status = std::system(ffmpegCommand(flags.dir, temporary, flags.fps).c_str());
+        if (status != 0)
+            throw std::runtime_error("ffmpeg failed (status " + std::to_string(status) +
+                                     "); the frames are in " + flags.dir);
+    });
     std::printf("%s\n", flags.video.c_str());
 }
 

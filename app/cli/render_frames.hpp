@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/io/output_files.hpp"
 #include "core/session/session.hpp"
 #include "core/sim/runner.hpp"
 
@@ -25,18 +26,22 @@ struct FrameFlags {
 void addFrameFlags(CLI::App& cmd, FrameFlags& flags);
 
 // Checks the flags (InputError, exit 2) and creates the frame folder, before
-// the run; resolves flags.dir from `out` when it is empty. Removes the
-// frame_NNNNN.png files an earlier run left there, so a video never mixes runs.
+// the run; resolves flags.dir from `out` when it is empty.
 void prepareFrames(FrameFlags& flags, const std::string& out, const Session& session);
 
 // runSession writing frames: each one the state at its step colour-mapped
-// with locked levels (core/output/frames.hpp) into flags.dir. Ctrl-C
-// (options.cancel) stops after the current chunk, keeping the frames so far.
+// with locked levels (core/output/frames.hpp) into `frames`, a StagedSequence
+// for flags.dir (core/io/output_files.hpp), whose commit() replaces the
+// frame_NNNNN.png files an earlier run left there, so a video never mixes
+// runs and a failed run leaves them. Ctrl-C (options.cancel) stops after the
+// current chunk, keeping the frames so far. A frame holding NaN or infinite
+// values is a blow-up (BlowUpError naming the steps), never written.
 RunResult renderFrames(const Session& session, const SimulatorFactory& makeSimulator,
-                       const RunOptions& options, const FrameFlags& flags);
+                       const RunOptions& options, const FrameFlags& flags, StagedSequence& frames);
 
-// Encodes the frames with ffmpeg when it is on PATH; otherwise prints how to
-// install it and the command to run (not an error). No-op without --video.
+// Encodes the frames with ffmpeg when it is on PATH, into a temporary renamed
+// into place when ffmpeg succeeds; otherwise prints how to install it and the
+// command to run (not an error). No-op without --video.
 void encodeVideo(const FrameFlags& flags);
 
 } // namespace morphogen::cli

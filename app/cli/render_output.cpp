@@ -9,10 +9,13 @@
 #include <optional>
 #include <sstream>
 
+#include "core/analysis/result_checks.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/operators/stability.hpp"
 #include "core/output/colormap.hpp"
 #include "core/output/texture_set.hpp"
+#include "core/sim/initial_state.hpp"
 #include "core/sim/runner.hpp"
 #include "core/sim/stability_check.hpp"
 
@@ -31,21 +34,74 @@ int runChunk(const Session& session) {
     return std::max(50, std::min(500, int(4e7 / double(session.width * session.height))));
 }
 
+namespace {
+
+std::vector<std::string> chemicalNames(const ReactionModel& model) {
+    std::vector<std::string> names;
+    for (const ChemicalSpec& c : model.chemicals())
+        names.push_back(c.name);
+    return names;
+}
+
+} // namespace
+
+void requireFinite(const RunResult& result) {
+    const Session& session = result.completed;
+    const auto bad = describeNonFinite(result.state, chemicalNames(session.outputModel()));
+    if (!bad)
+        return;
+    std::ostringstream os;
+    os << "the result after " << result.stepsDone << " steps holds NaN or infinite values (" << *bad
+       << "); nothing was written; try a smaller time step such as --dt " << suggestDt(session);
+    throw std::runtime_error(os.str());
+}
+
+bool warnIfFlat(const RunResult& result) {
+    const Session& session = result.completed;
+    const ReactionModel& model = session.outputModel();
+    const int chemical = colormapChemical(session.colormap, model);
+    const auto flat =
+        describeFlatChannel(result.state, chemical, model.chemicals()[std::size_t(chemical)].name);
+    if (!flat)
+        return false;
+    std::ostringstream os;
+    os << "warning: the result is uniform: " << *flat << " after " << result.stepsDone
+       << " steps, so the image is one colour; ";
+    // The likely cause, in the order they are decided: a start with nothing
+    // to grow from, a step too large to resolve the pattern, the parameters.
+    const std::vector<Session> parts = segmentSessions(session);
+    const Session& last = parts.back();
+    if (allChannelsFlat(initialState(parts.front()))) {
+        os << "it started uniform too, and nothing breaks the symmetry: give the start noise "
+              "or seed spots (--init)";
+    } else if (last.integrator == Integrator::SemiImplicit) {
+        // Stable at any dt, but a step much larger than the reaction's time scale smooths
+        // the pattern away instead of growing it.
+        os << "semi_implicit at dt " << last.dt
+           << " stays stable but a step this large can damp the pattern away: try a smaller "
+              "--dt such as "
+           << suggestDt(last);
+    } else {
+        os << "with these parameters the start's perturbations decay: try other values "
+              "(--param; `morphogen map` shows where patterns form)";
+    }
+    std::fprintf(stderr, "morphogen: %s\n", os.str().c_str());
+    return true;
+}
+
 void writeRenderOutput(const RunResult& result, const std::string& imagePath,
-                       const std::string& sessionPath, int bitDepth) {
+                       const std::string& sessionPath, int bitDepth, OutputFiles& files) {
+    requireFinite(result);
     const Session& session = result.completed;
     const ReactionModel& model = session.outputModel(); // the final state's
     if (imageFormatForPath(imagePath) == ImageFormat::Exr) {
-        std::vector<std::string> names;
-        for (const ChemicalSpec& c : model.chemicals())
-            names.push_back(c.name);
-        writeRawImage(imagePath, result.state, names);
+        writeRawImage(files.stage(imagePath), result.state, chemicalNames(model));
     } else {
         const int chemical = colormapChemical(session.colormap, model);
-        writeColourMapped(imagePath, ColourMapRows(result.state, chemical, session.colormap),
-                          bitDepth);
+        writeColourMapped(files.stage(imagePath),
+                          ColourMapRows(result.state, chemical, session.colormap), bitDepth);
     }
-    saveSessionFile(session, sessionPath);
+    saveSessionFile(session, files.stage(sessionPath));
 }
 
 } // namespace morphogen::cli
@@ -133,11 +189,12 @@ void applyTextureSetFlags(const TextureSetFlags& flags, Session& session) {
         prepareTextureSetDir(flags.dir);
 }
 
-void writeTextureSetOutput(const RunResult& result, const TextureSetFlags& flags) {
+void writeTextureSetOutput(const RunResult& result, const TextureSetFlags& flags,
+                           OutputFiles& files) {
     if (flags.dir.empty())
         return;
-    writeTextureSet(flags.dir, result.state, result.completed);
-    std::printf("%s\n", (std::filesystem::path(flags.dir) / "texture_set.json").string().c_str());
+    requireFinite(result);
+    writeTextureSet(flags.dir, result.state, result.completed, files);
 }
 
 } // namespace morphogen::cli

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/io/output_files.hpp"
 #include "core/session/session.hpp"
 #include "core/sim/runner.hpp"
 
@@ -23,11 +24,25 @@ void checkStability(Session& session, bool verbose = true);
 // blow-up is checked, about the same wall time per chunk at any grid size.
 int runChunk(const Session& session);
 
-// Writes result.state to `imagePath` (.png/.tif colour-mapped by the session's
-// colour map at `bitDepth`; .exr raw floats) and result.completed, the session
-// that reproduces it, to `sessionPath`.
+// Refuses (std::runtime_error, exit 1) a result holding NaN or infinite
+// values, naming the cells and the steps run: the runs check for blow-up as
+// they go, and this is the last check before anything is written.
+void requireFinite(const RunResult& result);
+
+// Warns on stderr when the chemical the image shows came out one flat value
+// (the image is one colour), saying what likely happened and what to try.
+// Only a warning: a uniform result can be the right answer (gs_uniform, a
+// parameter study), and its image and session are a true record of it.
+// Returns whether it warned.
+bool warnIfFlat(const RunResult& result);
+
+// Stages into `files` (core/io/output_files.hpp) result.state as `imagePath`
+// (.png/.tif colour-mapped by the session's colour map at `bitDepth`; .exr
+// raw floats) and then result.completed, the session that reproduces it, as
+// `sessionPath`: files.commit() renames them into place, the session last,
+// and a failure before that leaves the previous image and session untouched.
 void writeRenderOutput(const RunResult& result, const std::string& imagePath,
-                       const std::string& sessionPath, int bitDepth);
+                       const std::string& sessionPath, int bitDepth, OutputFiles& files);
 
 // `render --texture-set DIR` and the flags that set the session's "height" block.
 struct TextureSetFlags {
@@ -48,8 +63,9 @@ void addTextureSetFlags(CLI::App& cmd, TextureSetFlags& flags);
 // folder, creates it and checks it is writable: all before the run.
 void applyTextureSetFlags(const TextureSetFlags& flags, Session& session);
 
-// Writes the set of result into flags.dir (core/output/texture_set.hpp) and
-// prints its manifest's path; does nothing without a folder.
-void writeTextureSetOutput(const RunResult& result, const TextureSetFlags& flags);
+// Stages the set of result for flags.dir into `files` (core/output/texture_set.hpp);
+// does nothing without a folder.
+void writeTextureSetOutput(const RunResult& result, const TextureSetFlags& flags,
+                           OutputFiles& files);
 
 } // namespace morphogen::cli

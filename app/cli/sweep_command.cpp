@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <regex>
 #include <sstream>
 
@@ -20,8 +19,10 @@
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
 #include "core/analysis/pattern_classifier.hpp"
+#include "core/analysis/result_checks.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/io/output_files.hpp"
 #include "core/output/colormap.hpp"
 #include "core/sim/sweep.hpp"
 #include "gl/backend.hpp"
@@ -70,9 +71,30 @@ std::string formatValue(double v) {
 struct TileResult {
     int column = 0, row = 0;
     float x = 0, y = 0;
+    bool finite = true; // no NaN or infinite value in any chemical
     PatternStats stats;
     PatternClass cls = PatternClass::Uniform;
 };
+
+bool finiteState(const State& state) {
+    for (int c = 0; c < state.channels(); ++c)
+        if (planeRange(state.plane(c), state.cellCount()).nonFinite > 0)
+            return false;
+    return true;
+}
+
+// A tile that went NaN or infinite: red diagonal hatching, which no colour
+// map draws, instead of the colours its NaNs would map to (a flat tile that
+// would read as "uniform").
+void hatch(std::vector<float>& rgb, int side) {
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) {
+            const bool line = (x + y) % 8 < 3;
+            float* p = &rgb[(std::size_t(y) * std::size_t(side) + std::size_t(x)) * 3];
+            p[0] = line ? 0.85f : 1.0f;
+            p[1] = p[2] = line ? 0.1f : 1.0f;
+        }
+}
 
 // Colour-mapped tiles with a gap, a value label under every column and left
 // of every row (thinned out where they would overlap), the parameter names
@@ -98,45 +120,68 @@ void writeSheet(const std::string& path, const SweepSpec& spec, const std::vecto
     PlotFrame plot = drawPlotFrame(plotW, plotH, xAxis, yAxis, title);
     for (int row = 0; row < spec.rows; ++row)
         for (int column = 0; column < spec.columns; ++column) {
-            const std::vector<float> rgb = applyColormap(
-                tiles[std::size_t(row * spec.columns + column)], chemical, spec.base.colormap);
+            const State& tile = tiles[std::size_t(row * spec.columns + column)];
             std::vector<float> big(std::size_t(side) * side * 3);
-            for (int y = 0; y < side; ++y)
-                for (int x = 0; x < side; ++x)
-                    for (int c = 0; c < 3; ++c)
-                        big[(std::size_t(y) * side + x) * 3 + c] =
-                            rgb[(std::size_t(y / zoom) * spec.tile + x / zoom) * 3 + c];
+            if (!finiteState(tile)) {
+                hatch(big, side);
+            } else {
+                const std::vector<float> rgb = applyColormap(tile, chemical, spec.base.colormap);
+                for (int y = 0; y < side; ++y)
+                    for (int x = 0; x < side; ++x)
+                        for (int c = 0; c < 3; ++c)
+                            big[(std::size_t(y) * side + x) * 3 + c] =
+                                rgb[(std::size_t(y / zoom) * spec.tile + x / zoom) * 3 + c];
+            }
             plot.canvas.paste(big, side, side, plot.left + column * pitch,
                               plot.top + (spec.rows - 1 - row) * pitch);
         }
     writeRgbImage(path, plot.canvas.rgb, plot.canvas.width, plot.canvas.height, 8);
 }
 
+// A stat for stats.csv: empty when it is not a finite number (a tile that
+// went NaN or infinite), never "nan" or "inf" passed off as a value.
+std::string csvNumber(double v) {
+    if (!std::isfinite(v))
+        return "";
+    std::ostringstream os;
+    os << v;
+    return os.str();
+}
+
+// stats.csv and stats.json into `files`. A tile that went NaN or infinite has
+// its class ("unstable") and "finite": false, and no numbers: empty fields in
+// the CSV, no keys in the JSON (nlohmann would write NaN as null).
 void writeStats(const std::filesystem::path& dir, const SweepSpec& spec,
                 const std::vector<TileResult>& results, int steps, const std::string& backend,
-                const std::string& start) {
-    std::ofstream csv(dir / "stats.csv");
+                const std::string& start, OutputFiles& files) {
+    std::ostringstream csv;
     csv << "column,row,x_value,y_value,mean,variance,dominant_wavelength,feature_count,"
            "orientation_strength,class\n";
     nlohmann::json tiles = nlohmann::json::array();
     for (const TileResult& r : results) {
         const PatternStats& s = r.stats;
+        const auto number = [&](double v) { return r.finite ? csvNumber(v) : std::string(); };
         csv << r.column << ',' << r.row << ',' << formatValue(r.x) << ',' << formatValue(r.y) << ','
-            << s.mean << ',' << s.variance << ',' << s.dominantWavelength << ',' << s.featureCount
-            << ',' << s.orientationStrength << ',' << toString(r.cls) << '\n';
-        tiles.push_back({{"column", r.column},
-                         {"row", r.row},
-                         {"x", r.x},
-                         {"y", r.y},
-                         {"mean", s.mean},
-                         {"variance", s.variance},
-                         {"dominant_wavelength", s.dominantWavelength},
-                         {"feature_count", s.featureCount},
-                         {"orientation_strength", s.orientationStrength},
-                         {"class", toString(r.cls)}});
+            << number(s.mean) << ',' << number(s.variance) << ',' << number(s.dominantWavelength)
+            << ',' << number(s.featureCount) << ',' << number(s.orientationStrength) << ','
+            << toString(r.cls) << '\n';
+        nlohmann::json tile = {{"column", r.column}, {"row", r.row}, {"x", r.x}, {"y", r.y}};
+        if (!r.finite)
+            tile["finite"] = false;
+        const std::pair<const char*, double> stats[] = {
+            {"mean", s.mean},
+            {"variance", s.variance},
+            {"dominant_wavelength", s.dominantWavelength},
+            {"feature_count", s.featureCount},
+            {"orientation_strength", s.orientationStrength}};
+        for (const auto& [key, value] : stats)
+            if (r.finite && std::isfinite(value))
+                tile[key] = key == std::string("feature_count") ? nlohmann::json(s.featureCount)
+                                                                : nlohmann::json(value);
+        tile["class"] = toString(r.cls);
+        tiles.push_back(tile);
     }
-    if (!csv)
-        throw std::runtime_error("cannot write " + (dir / "stats.csv").string());
+    writeTextAtomically(files.stage((dir / "stats.csv").string()), csv.str());
     nlohmann::json j = {{"model", spec.base.model},
                         {"x", {{"param", spec.x.param}, {"min", spec.x.min}, {"max", spec.x.max}}},
                         {"y", {{"param", spec.y.param}, {"min", spec.y.min}, {"max", spec.y.max}}},
@@ -146,10 +191,33 @@ void writeStats(const std::filesystem::path& dir, const SweepSpec& spec,
                         {"steps", steps},
                         {"backend", backend},
                         {"tiles", tiles}};
-    std::ofstream json(dir / "stats.json");
-    json << j.dump(2) << '\n';
-    if (!json)
-        throw std::runtime_error("cannot write " + (dir / "stats.json").string());
+    writeTextAtomically(files.stage((dir / "stats.json").string()), j.dump(2) + "\n");
+}
+
+// Names the tiles that went NaN or infinite (at most a few, then a count) on
+// stderr, with what to try; nothing when there are none.
+void warnNonFiniteTiles(const SweepSpec& spec, const std::vector<TileResult>& results, float dt) {
+    std::vector<const TileResult*> bad;
+    for (const TileResult& r : results)
+        if (!r.finite)
+            bad.push_back(&r);
+    if (bad.empty())
+        return;
+    constexpr std::size_t kNamed = 8;
+    std::ostringstream os;
+    os << "warning: " << bad.size() << " of " << results.size()
+       << " tiles went NaN or infinite (blew up): ";
+    for (std::size_t i = 0; i < std::min(bad.size(), kNamed); ++i)
+        os << (i ? "; " : "") << "column " << bad[i]->column << ", row " << bad[i]->row << " ("
+           << spec.x.param << " " << formatValue(bad[i]->x) << ", " << spec.y.param << " "
+           << formatValue(bad[i]->y) << ")";
+    if (bad.size() > kNamed)
+        os << "; and " << bad.size() - kNamed << " more";
+    os << ". They are hatched red in sheet.png, class \"unstable\" with empty stats in "
+          "stats.csv and \"finite\": false without stats in stats.json. These values do not "
+          "run at dt "
+       << dt << ": narrow --x or --y to leave them out, or sweep from a preset with a smaller dt";
+    std::fprintf(stderr, "morphogen: %s\n", os.str().c_str());
 }
 
 double seconds(Clock::time_point since) {
@@ -252,8 +320,9 @@ std::vector<TileResult> measureTiles(const SweepSpec& spec, const std::vector<St
             r.row = row;
             r.x = sweepValue(spec.x, column, spec.columns);
             r.y = sweepValue(spec.y, row, spec.rows);
-            const PatternStats measured =
-                measurePattern(tiles[std::size_t(row * spec.columns + column)], chemical);
+            const State& tile = tiles[std::size_t(row * spec.columns + column)];
+            r.finite = finiteState(tile);
+            const PatternStats measured = measurePattern(tile, chemical);
             r.cls = classifyPattern(measured, &model.chemicals()[std::size_t(chemical)]);
             r.stats = statsForClass(measured, r.cls);
             results.push_back(r);
@@ -324,10 +393,14 @@ void sweep(const SweepFlags& f) {
     if (f.compare)
         compareOneByOne(batched, backend.makeSimulator, backendName, tiles, mainSeconds);
 
-    writeSheet((dir / "sheet.png").string(), spec, tiles, batched.steps);
-    writeStats(dir, spec, measureTiles(spec, tiles), batched.steps, backendName,
-               toString(parseStartFlag(f.start)));
-    saveSessionFile(batched, (dir / "session.json").string());
+    const std::vector<TileResult> results = measureTiles(spec, tiles);
+    warnNonFiniteTiles(spec, results, batched.dt);
+    OutputFiles files; // the sheet, its stats and its session replace the previous ones together
+    writeSheet(files.stage((dir / "sheet.png").string()), spec, tiles, batched.steps);
+    writeStats(dir, spec, results, batched.steps, backendName, toString(parseStartFlag(f.start)),
+               files);
+    saveSessionFile(batched, files.stage((dir / "session.json").string()));
+    files.commit();
     std::printf("%s\n", dir.string().c_str());
 }
 

@@ -11,6 +11,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/base/errors.hpp"
+#include "core/io/output_files.hpp"
 
 namespace morphogen {
 
@@ -51,40 +52,30 @@ void checkWritable(const std::string& path) {
 
 namespace {
 
-// Opens a temporary file next to `path` (with the real extension: OIIO picks
-// the format by it), lets `pixels` write into it, then renames it into place,
-// so a failed write leaves no half-written image.
+// A library's message on one line (libpng's come in several).
+std::string oneLine(std::string text) {
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+        text.pop_back();
+    for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at))
+        text.replace(at, 1, "; ");
+    return text;
+}
+
+// Writes the image through writeFileAtomically (a temporary next to `path`
+// with the real extension, which OIIO picks the format by, renamed into
+// place), so a failed or interrupted write leaves no half-written image.
 void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec,
                      const std::function<bool(OIIO::ImageOutput&)>& pixels) {
-    const fs::path p(path);
-    const std::string tmp =
-        (p.parent_path() / (".~" + p.stem().string() + p.extension().string())).string();
-    auto out = OIIO::ImageOutput::create(tmp);
-    if (!out)
-        throw InputError(path + ": no image writer for this format: " + OIIO::geterror());
-    bool written = false;
-    try {
-        written = out->open(tmp, spec) && pixels(*out) && out->close();
-    } catch (...) {
-        out.reset();
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw;
-    }
-    if (!written) {
-        const std::string why = out->geterror();
-        out.reset();
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw InputError(path + ": writing the image failed: " + why);
-    }
-    out.reset();
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw InputError(path + ": cannot move the image into place: " + ec.message());
-    }
+    const std::string shown = finalPathOf(path);
+    writeFileAtomically(path, [&](const std::string& tmp) {
+        auto out = OIIO::ImageOutput::create(tmp);
+        if (!out)
+            throw InputError(shown + ": no image writer for this format: " + OIIO::geterror());
+        // An exception from `pixels` closes the file (unique_ptr) before the
+        // temporary is removed.
+        if (!(out->open(tmp, spec) && pixels(*out) && out->close()))
+            throw InputError(shown + ": writing the image failed: " + oneLine(out->geterror()));
+    });
 }
 
 // Quantises one row of values into `typed`: 8- or 16-bit, clamped to [0, 1].
@@ -142,7 +133,8 @@ void writeImageRows(const std::string& path, int width, int height, int channels
 void writeRawRows(const std::string& path, int width, int height, int channels,
                   const std::vector<std::string>& channelNames, const ImageRowFn& row) {
     if (imageFormatForPath(path) == ImageFormat::Png)
-        throw InputError(path + ": PNG cannot hold raw float concentrations (use .exr or .tif)");
+        throw InputError(finalPathOf(path) +
+                         ": PNG cannot hold raw float concentrations (use .exr or .tif)");
     writeTypedRows(path, width, height, channels, OIIO::TypeDesc::FLOAT, channelNames, row);
 }
 

@@ -32,6 +32,8 @@ Propagator::Propagator(const TensorSequence& sequence, double tau) : m_d(sequenc
     m_inv[1] = -xy / det;
     m_inv[2] = xx / det;
     m_norm = 1.0 / (2 * kPi * std::sqrt(det));
+    // Largest eigenvalue of [[xx, xy], [xy, yy]].
+    m_width = std::sqrt(0.5 * (xx + yy) + std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy));
 }
 
 double Propagator::operator()(double x, double y) const {
@@ -75,6 +77,18 @@ std::vector<double> sampleAngular(const Propagator& p, double radius, int n) {
     for (std::size_t i = 0; i < v.size(); ++i)
         v[i] = p.atAngle(360.0 * double(i) / double(v.size()), radius);
     return v;
+}
+
+AngularShape angularShape(const std::vector<double>& samples) {
+    bool positive = false;
+    for (double v : samples) {
+        if (!std::isfinite(v))
+            return AngularShape::Empty;
+        positive = positive || v > 0;
+    }
+    if (!positive)
+        return AngularShape::Empty;
+    return findAngularPeaks(samples).empty() ? AngularShape::Isotropic : AngularShape::Directional;
 }
 
 std::vector<double> findAngularPeaks(const std::vector<double>& f) {

@@ -32,16 +32,30 @@ public:
     double operator()(double x, double y) const;
     // On the circle |r| = radius at angle `degrees`.
     double atAngle(double degrees, double radius = 1.0) const;
+    // The Gaussian's standard deviation along its widest axis, sqrt of the
+    // largest eigenvalue of 2 tau D2: radii of about 1 to 3 of it show the
+    // propagator's shape.
+    double width() const { return m_width; }
 
 private:
     TensorSequence m_d;
     double m_tau;
     double m_inv[3]; // (2 tau D2)^-1 as xx, xy, yy
     double m_norm;   // 1 / (2 pi sqrt(det(2 tau D2)))
+    double m_width;
 };
 
 // n samples of the propagator on |r| = radius, at angles 360 i / n degrees.
 std::vector<double> sampleAngular(const Propagator& p, double radius, int n = 3600);
+
+// What angular samples of a propagator can show. Empty: no sample is a
+// positive finite number (the density underflowed to 0 at that radius, or
+// only the Gram-Charlier series' negative tails are left, or it overflowed):
+// the plot has nothing in it and there is no direction to read. Isotropic:
+// constant up to rounding. Directional: the rest, with findAngularPeaks'
+// peaks.
+enum class AngularShape { Empty, Isotropic, Directional };
+AngularShape angularShape(const std::vector<double>& samples);
 
 // Directions (degrees in [0, 360), ascending) of the local maxima of a
 // periodic angular function sampled at 360 i / n degrees, refined by a

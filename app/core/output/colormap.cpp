@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 
+#include "core/analysis/result_checks.hpp"
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
@@ -143,10 +144,8 @@ ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpe
         }
     // A flat field maps to the low end: stretching float round-off (a range
     // of a few ulps) to the full palette would invent a pattern.
-    const float range = hi - lo;
-    const float magnitude = std::max({1.0f, std::fabs(lo), std::fabs(hi)});
     m_low = lo;
-    m_scale = range > 1e-5f * magnitude ? 1.0f / range : 0.0f;
+    m_scale = isFlatRange(lo, hi) ? 0.0f : 1.0f / (hi - lo);
 }
 
 ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec, float low,

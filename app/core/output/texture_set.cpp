@@ -10,6 +10,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/io/output_files.hpp"
 #include "core/output/colormap.hpp"
 
 namespace morphogen {
@@ -167,42 +168,46 @@ nlohmann::json textureSetManifest(const Session& session, int chemical, const He
             {"files", files}};
 }
 
-void writeTextureSet(const std::string& dir, const State& state, const Session& session) {
+void writeTextureSet(const std::string& dir, const State& state, const Session& session,
+                     OutputFiles& files) {
     prepareTextureSetDir(dir);
     const fs::path d(dir);
+    const auto staged = [&](const char* name) { return files.stage((d / name).string()); };
     const int w = state.width(), hgt = state.height();
     const int chemical = colormapChemical(session.colormap, session.outputModel());
     const HeightLevels levels = heightLevels(session, chemical);
 
     // Every map a row at a time from the state: no whole-image buffers.
-    writeColourMapped((d / "albedo.png").string(), ColourMapRows(state, chemical, session.colormap),
-                      8);
+    writeColourMapped(staged("albedo.png"), ColourMapRows(state, chemical, session.colormap), 8);
     const HeightOf h(state, chemical, levels);
     const auto heightRow = [&](int y, float* row) {
         const std::size_t first = std::size_t(y) * std::size_t(w);
         for (std::size_t x = 0; x < std::size_t(w); ++x)
             row[x] = h(first + x);
     };
-    writeImageRows((d / "height.png").string(), w, hgt, 1, 16, heightRow);
-    writeRawRows((d / "height.exr").string(), w, hgt, 1, {"height"}, heightRow);
+    writeImageRows(staged("height.png"), w, hgt, 1, 16, heightRow);
+    writeRawRows(staged("height.exr"), w, hgt, 1, {"height"}, heightRow);
     const HeightSpec& spec = session.heightMaps;
-    writeImageRows((d / "normal.png").string(), w, hgt, 3, 8, [&](int y, float* rgb) {
+    writeImageRows(staged("normal.png"), w, hgt, 3, 8, [&](int y, float* rgb) {
         normalRow(h, w, hgt, y, session.edges, spec.normalStrength, spec.normalFormat, rgb);
     });
-    writeImageRows((d / "mask.png").string(), w, hgt, 1, 8, [&](int y, float* row) {
+    writeImageRows(staged("mask.png"), w, hgt, 1, 8, [&](int y, float* row) {
         const std::size_t first = std::size_t(y) * std::size_t(w);
         for (std::size_t x = 0; x < std::size_t(w); ++x)
             row[x] = h(first + x) > spec.maskThreshold ? 1.0f : 0.0f;
     });
-    saveSessionFile(session, (d / "session.json").string());
+    saveSessionFile(session, staged("session.json"));
 
     const float* c = state.plane(chemical);
     const auto [lo, hi] = std::minmax_element(c, c + state.cellCount());
-    const std::string manifestPath = (d / "texture_set.json").string();
-    std::ofstream out(manifestPath);
-    out << textureSetManifest(session, chemical, levels, *lo, *hi).dump(2) << "\n";
-    if (!out)
-        throw InputError(manifestPath + ": writing the manifest failed");
+    writeTextAtomically(staged("texture_set.json"),
+                        textureSetManifest(session, chemical, levels, *lo, *hi).dump(2) + "\n");
+}
+
+void writeTextureSet(const std::string& dir, const State& state, const Session& session) {
+    OutputFiles files;
+    writeTextureSet(dir, state, session, files);
+    files.commit();
 }
 
 } // namespace morphogen

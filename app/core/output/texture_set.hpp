@@ -8,6 +8,7 @@
 
 #include "core/base/state.hpp"
 #include "core/domain/grid_domain.hpp"
+#include "core/io/output_files.hpp"
 #include "core/session/session.hpp"
 
 namespace morphogen {
@@ -55,7 +56,12 @@ void prepareTextureSetDir(const std::string& dir);
 // session.json (the session that reproduces the set) and texture_set.json
 // (the manifest) into `dir`, creating it. Throws InputError when the folder
 // cannot be created or written.
+// They replace a previous set together, once all are written (output_files.hpp).
 void writeTextureSet(const std::string& dir, const State& state, const Session& session);
+// The same, staged into `files` with other outputs of the run; renamed into
+// place by files.commit(), in the order above (the manifest last).
+void writeTextureSet(const std::string& dir, const State& state, const Session& session,
+                     OutputFiles& files);
 
 // The manifest texture_set.json holds (exposed for tests).
 nlohmann::json textureSetManifest(const Session& session, int chemical, const HeightLevels& levels,

@@ -14,6 +14,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/json_fields.hpp"
 #include "core/domain/atlas.hpp"
+#include "core/io/output_files.hpp"
 #include "core/session/gradient.hpp"
 
 namespace morphogen {
@@ -415,19 +416,7 @@ Session loadSessionFile(const std::string& path) {
 }
 
 void saveSessionFile(const Session& session, const std::string& path) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp);
-        if (!out)
-            throw InputError(path + ": cannot write the session file (is the folder writable?)");
-        out << sessionToJson(session).dump(2) << "\n";
-        if (!out)
-            throw InputError(path + ": writing the session file failed");
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec)
-        throw InputError(path + ": cannot move the session file into place: " + ec.message());
+    writeTextAtomically(path, sessionToJson(session).dump(2) + "\n");
 }
 
 std::vector<Session> allPresets() {

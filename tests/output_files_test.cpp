@@ -1,0 +1,232 @@
+// Output safety (core/io/output_files.hpp): temporaries next to the final
+// path, replaced together or not at all, removed on failure and by the
+// signal-time cleanup; writers that write staged temporaries in place.
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/io/output_files.hpp"
+#include "core/session/session.hpp"
+#include "test_support.hpp"
+
+using namespace morphogen;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path freshDir(const std::string& name) {
+    const fs::path dir = test::scratchDir("morphogen_output_files_test") / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::string readText(const fs::path& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+// Names in `dir` starting with ".~": temporaries (ours).
+int temporariesIn(const fs::path& dir) {
+    int n = 0;
+    for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir))
+        n += e.path().filename().string().rfind(".~", 0) == 0 ? 1 : 0;
+    return n;
+}
+
+} // namespace
+
+TEST(OutputFiles, TemporaryIsHiddenInTheSameFolderWithTheExtension) {
+    const std::string tmp = temporaryPathFor("/some/dir/image.png");
+    const fs::path p(tmp);
+    EXPECT_EQ(p.parent_path(), fs::path("/some/dir"));
+    EXPECT_EQ(p.extension(), ".png"); // OIIO picks the format by it
+    EXPECT_EQ(p.filename().string().rfind(".~image.", 0), 0u) << tmp;
+    EXPECT_NE(temporaryPathFor("/some/dir/image.png"), tmp); // never shared
+    // A name near the file system's limit still gives a temporary within it.
+    const std::string longName(250, 'n');
+    const fs::path longTmp(temporaryPathFor("/d/" + longName + ".json"));
+    EXPECT_LE(longTmp.filename().string().size(), 255u);
+    EXPECT_EQ(longTmp.extension(), ".json");
+}
+
+TEST(OutputFiles, CommitReplacesEveryFileInOrder) {
+    const fs::path dir = freshDir("commit");
+    writeText(dir / "a.txt", "old a");
+    writeText(dir / "b.json", "old b");
+    {
+        OutputFiles files;
+        writeTextAtomically(files.stage((dir / "a.txt").string()), "new a");
+        writeTextAtomically(files.stage((dir / "b.json").string()), "new b");
+        EXPECT_EQ(liveTemporaryCount(), 2);
+        // Nothing visible until the commit.
+        EXPECT_EQ(readText(dir / "a.txt"), "old a");
+        EXPECT_EQ(temporariesIn(dir), 2);
+        files.commit();
+        EXPECT_EQ(files.paths().back(), (dir / "b.json").string());
+    }
+    EXPECT_EQ(readText(dir / "a.txt"), "new a");
+    EXPECT_EQ(readText(dir / "b.json"), "new b");
+    EXPECT_EQ(temporariesIn(dir), 0);
+    EXPECT_EQ(liveTemporaryCount(), 0);
+}
+
+TEST(OutputFiles, AFailedWriteReplacesNothingAndLeavesNoTemporaries) {
+    const fs::path dir = freshDir("failed");
+    writeText(dir / "image.txt", "old image");
+    writeText(dir / "session.json", "old session");
+    try {
+        OutputFiles files;
+        writeTextAtomically(files.stage((dir / "image.txt").string()), "new image");
+        // The session's writer fails after its temporary exists.
+        writeFileAtomically(files.stage((dir / "session.json").string()),
+                            [](const std::string& tmp) {
+                                std::ofstream(tmp) << "half";
+                                throw std::runtime_error("disk full");
+                            });
+        files.commit();
+        FAIL() << "the write should have thrown";
+    } catch (const std::runtime_error& e) {
+        EXPECT_STREQ(e.what(), "disk full");
+    }
+    EXPECT_EQ(readText(dir / "image.txt"), "old image");
+    EXPECT_EQ(readText(dir / "session.json"), "old session");
+    EXPECT_EQ(temporariesIn(dir), 0);
+    EXPECT_EQ(liveTemporaryCount(), 0);
+}
+
+TEST(OutputFiles, AFolderInTheWayIsFoundBeforeAnyRename) {
+    const fs::path dir = freshDir("folder");
+    writeText(dir / "image.txt", "old image");
+    fs::create_directory(dir / "session.json"); // appeared during the run
+    {
+        OutputFiles files;
+        writeTextAtomically(files.stage((dir / "image.txt").string()), "new image");
+        writeTextAtomically(files.stage((dir / "session.json").string()), "new session");
+        try {
+            files.commit();
+            FAIL() << "commit should have refused the folder";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("session.json: cannot write here: it is a folder"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+    EXPECT_EQ(readText(dir / "image.txt"), "old image");
+    EXPECT_TRUE(fs::is_directory(dir / "session.json"));
+    EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+TEST(OutputFiles, APathStagedTwiceIsRefused) {
+    const fs::path dir = freshDir("twice");
+    OutputFiles files;
+    files.stage((dir / "x.png").string());
+    EXPECT_THROW(files.stage((dir / "." / "x.png").string()), InputError);
+}
+
+TEST(OutputFiles, MessagesNameTheFinalPathNotTheTemporary) {
+    const fs::path dir = freshDir("messages");
+    OutputFiles files;
+    const std::string tmp = files.stage((dir / "raw.png").string());
+    EXPECT_EQ(finalPathOf(tmp), (dir / "raw.png").string());
+    State state(4, 4, 1);
+    try {
+        writeRawImage(tmp, state, {"u"}); // PNG cannot hold raw floats
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind((dir / "raw.png").string(), 0), 0u) << e.what();
+    }
+}
+
+TEST(OutputFiles, ImagesAndSessionsAreWrittenThroughTemporaries) {
+    const fs::path dir = freshDir("writers");
+    const std::string image = (dir / "grey.png").string();
+    writeGreyImage(image, std::vector<float>(16, 0.5f), 4, 4, 8);
+    EXPECT_TRUE(fs::is_regular_file(image));
+    // A row callback that throws halfway: no image, no temporary.
+    const std::string broken = (dir / "broken.png").string();
+    EXPECT_THROW(writeImageRows(broken, 4, 4, 1, 8,
+                                [](int y, float* row) {
+                                    if (y == 2)
+                                        throw std::runtime_error("interrupted");
+                                    std::fill(row, row + 4, 0.25f);
+                                }),
+                 std::runtime_error);
+    EXPECT_FALSE(fs::exists(broken));
+    saveSessionFile(loadPreset("gs_coral"), (dir / "s.json").string());
+    EXPECT_NO_THROW(loadSessionFile((dir / "s.json").string()));
+    EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+TEST(StagedSequence, CommitReplacesTheOldSeriesAndKeepsOtherFiles) {
+    const fs::path dir = freshDir("sequence");
+    for (int i = 0; i < 5; ++i)
+        writeText(dir / ("frame_0000" + std::to_string(i) + ".png"), "old");
+    writeText(dir / "notes.txt", "mine");
+    writeText(dir / "frame_final.png", "not a numbered frame");
+    {
+        StagedSequence frames(dir.string(), "frame_", ".png");
+        for (int i = 0; i < 2; ++i) {
+            writeTextAtomically(frames.path(i), "new " + std::to_string(i));
+            frames.written(i);
+        }
+        EXPECT_EQ(readText(dir / "frame_00000.png"), "old"); // until the commit
+        frames.commit();
+    }
+    EXPECT_EQ(readText(dir / "frame_00000.png"), "new 0");
+    EXPECT_EQ(readText(dir / "frame_00001.png"), "new 1");
+    EXPECT_FALSE(fs::exists(dir / "frame_00002.png")); // no mix of two runs
+    EXPECT_EQ(readText(dir / "notes.txt"), "mine");
+    EXPECT_TRUE(fs::exists(dir / "frame_final.png"));
+    EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+TEST(StagedSequence, AnUncommittedSeriesIsRemovedAndTheOldOneStays) {
+    const fs::path dir = freshDir("sequence_failed");
+    writeText(dir / "frame_00000.png", "old");
+    {
+        StagedSequence frames(dir.string(), "frame_", ".png");
+        writeTextAtomically(frames.path(0), "new");
+        frames.written(0);
+    }
+    EXPECT_EQ(readText(dir / "frame_00000.png"), "old");
+    EXPECT_EQ(temporariesIn(dir), 0);
+    EXPECT_EQ(liveTemporaryCount(), 0);
+}
+
+// The signal handler's cleanup, in a child process (it disables new
+// registrations for good, as the process is about to end).
+TEST(OutputFilesDeathTest, SignalCleanupRemovesTemporariesAndStagedSeries) {
+    const fs::path dir = freshDir("signal");
+    writeText(dir / "image.txt", "old");
+    EXPECT_EXIT(
+        {
+            OutputFiles files;
+            writeTextAtomically(files.stage((dir / "image.txt").string()), "new");
+            StagedSequence frames(dir.string(), "frame_", ".png");
+            for (int i = 0; i < 3; ++i) {
+                writeTextAtomically(frames.path(i), "frame");
+                frames.written(i);
+            }
+            // A frame being written: its own temporary, and the next index half-written.
+            std::ofstream(frames.path(3)) << "half";
+            removeTemporariesForSignal();
+            std::_Exit(temporariesIn(dir) == 0 && readText(dir / "image.txt") == "old" ? 0 : 1);
+        },
+        ::testing::ExitedWithCode(0), "");
+    EXPECT_EQ(temporariesIn(dir), 0);
+}
