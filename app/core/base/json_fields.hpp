@@ -120,11 +120,15 @@ public:
             return fallback;
         if (!j->is_number_integer())
             failField(key, "must be an integer, got " + typeName(*j));
-        const long long v =
-            j->is_number_unsigned() ? (long long)j->get<unsigned long long>() : j->get<long long>();
+        const std::string accepted =
+            ", accepted range is [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+        // Past LLONG_MAX (up to 2^64 - 1) a signed cast would wrap to a negative value.
+        if (j->is_number_unsigned() &&
+            j->get<unsigned long long>() > static_cast<unsigned long long>(max))
+            failField(key, "is " + std::to_string(j->get<unsigned long long>()) + accepted);
+        const long long v = j->get<long long>();
         if (v < min || v > max)
-            failField(key, "is " + std::to_string(v) + ", accepted range is [" +
-                               std::to_string(min) + ", " + std::to_string(max) + "]");
+            failField(key, "is " + std::to_string(v) + accepted);
         return v;
     }
 

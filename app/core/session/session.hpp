@@ -10,6 +10,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "core/base/limits.hpp" // kMaxGridSide and the other limits
 #include "core/domain/domain.hpp"
 #include "core/models/diffusion_spec.hpp"
 #include "core/models/initial_condition.hpp"
@@ -126,9 +127,6 @@ void resizeSession(Session& session, int width, int height);
 
 // Runs the session on `atlas`: its size becomes the atlas texture's.
 void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas);
-
-// Largest accepted grid side; the GPU may allow less (checked at allocation).
-constexpr int kMaxGridSide = 16384;
 
 // Parses a session; `source` names the file (or preset) in error messages.
 // Unknown fields, wrong types and out-of-range values throw InputError.
