@@ -135,7 +135,8 @@ Convergence timeToConverge(const Session& session, const SimulatorFactory& make,
     return result;
 }
 
-std::vector<int> parseSizes(const std::string& text) {
+// A comma-separated list of sizes given to `flag`.
+std::vector<int> parseSizes(const std::string& flag, const std::string& text) {
     std::vector<int> sizes;
     std::stringstream in(text);
     std::string item;
@@ -143,20 +144,24 @@ std::vector<int> parseSizes(const std::string& text) {
         char* end = nullptr;
         const long v = std::strtol(item.c_str(), &end, 10);
         if (item.empty() || *end != '\0' || v < 8 || v > kMaxGridSide)
-            throw InputError("--sizes '" + text + "': '" + item + "' is not a size in 8.." +
+            throw InputError(flag + " '" + text + "': '" + item + "' is not a size in 8.." +
                              std::to_string(kMaxGridSide));
         sizes.push_back(int(v));
     }
     if (sizes.empty())
-        throw InputError("--sizes is empty");
+        throw InputError(flag + " is empty");
     return sizes;
 }
 
 void checkFlags(const BenchFlags& f) {
-    parseSizes(f.sizes);
-    parseSizes(f.operatorSizes); // refused before any row runs
-    if (!(f.seconds > 0))
-        throw InputError("--seconds must be positive");
+    parseSizes("--sizes", f.sizes);
+    parseSizes("--operator-sizes", f.operatorSizes); // refused before any row runs
+    if (!(f.seconds > 0 && f.seconds <= kMaxBenchSeconds)) {
+        std::ostringstream os;
+        os << "--seconds " << f.seconds << ": accepted are numbers in (0, " << kMaxBenchSeconds
+           << "] (seconds per measurement)";
+        throw InputError(os.str());
+    }
     if (f.convergenceSize < 32 || f.convergenceSize > kMaxGridSide || f.convergenceSize % 2 != 0)
         throw InputError("--convergence-size " + std::to_string(f.convergenceSize) +
                          ": accepted are even sizes in 32.." + std::to_string(kMaxGridSide));
@@ -187,7 +192,7 @@ nlohmann::json throughputRows(const Session& base, const BenchFlags& f, bool gpu
     std::printf("%-6s %14s %14s %14s %10s %14s %12s\n", "size", "gpu step it/s", "gpu copy it/s",
                 "gpu cells/s", "step/copy", "cpu it/s", "cpu cells/s");
     nlohmann::json rows = nlohmann::json::array();
-    for (int n : parseSizes(f.sizes)) {
+    for (int n : parseSizes("--sizes", f.sizes)) {
         Session s = base;
         s.width = s.height = n;
         const double cells = double(n) * n;
@@ -235,7 +240,7 @@ nlohmann::json operatorRows(const Session& base, const BenchFlags& f, bool gpuRo
     std::printf("\n%-16s %-6s %14s %10s %14s %10s\n", "operator", "size", "gpu it/s", "vs 5-point",
                 "cpu it/s", "vs 5-point");
     nlohmann::json rows = nlohmann::json::array();
-    for (int n : parseSizes(f.operatorSizes)) {
+    for (int n : parseSizes("--operator-sizes", f.operatorSizes)) {
         double gpuBase = 0, cpuBase = 0;
         for (auto& [name, variant] : operatorVariants(base)) {
             Session s = variant;
@@ -356,7 +361,9 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option(
         "--gpu-device", flags->gpuDevice,
         "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
-    cmd->add_option("--seconds", flags->seconds, "time per measurement (default 1)");
+    cmd->add_option("--seconds", flags->seconds,
+                    "time per measurement, up to " + std::to_string(int(kMaxBenchSeconds)) +
+                        " (default 1)");
     cmd->add_flag("--no-cpu", flags->noCpu, "skip the CPU backend");
     cmd->add_option("--operator-sizes", flags->operatorSizes,
                     "sizes for the 5-point / 3x3 / 5x5 operator comparison (default 512,1024)");
