@@ -210,18 +210,25 @@ Session buildSession(const RenderFlags& f) {
     applyGradientFlags(f.gradient, f.colormap, s.colormap);
     colormapChemical(s.colormap, s.outputModel());
     validateSession(s, f.sessionFile.empty() ? "preset " + s.name : f.sessionFile);
+    for (const std::string& image : sessionImages(s))
+        checkImageFile(image); // headers only: the run reads them again
     return s;
 }
 
 // Whether two paths name the same file: "./a.json" and "a.json", or a path
 // through a link, are the same even when the file does not exist yet.
 bool samePath(const std::string& a, const std::string& b) {
+    namespace fs = std::filesystem;
     std::error_code ea, eb;
-    const std::filesystem::path pa = std::filesystem::weakly_canonical(a, ea);
-    const std::filesystem::path pb = std::filesystem::weakly_canonical(b, eb);
+    // Absolute first: weakly_canonical leaves a relative path whose first
+    // part does not exist yet ("a.json") relative.
+    const fs::path absoluteA = fs::absolute(a, ea), absoluteB = fs::absolute(b, eb);
     if (ea || eb)
-        return std::filesystem::absolute(a).lexically_normal() ==
-               std::filesystem::absolute(b).lexically_normal();
+        return fs::path(a).lexically_normal() == fs::path(b).lexically_normal();
+    const fs::path pa = fs::weakly_canonical(absoluteA, ea);
+    const fs::path pb = fs::weakly_canonical(absoluteB, eb);
+    if (ea || eb)
+        return absoluteA.lexically_normal() == absoluteB.lexically_normal();
     return pa == pb;
 }
 

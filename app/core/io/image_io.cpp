@@ -165,6 +165,51 @@ namespace morphogen {
 
 namespace {
 
+// libpng (under OIIO) prints its own "libpng error: ..." line on stderr
+// before OIIO reports the same error: while an image is read, stderr goes to
+// a temporary file. A failed read's text is in the InputError already; a
+// successful read's messages (warnings) are passed on as they were.
+class QuietStderr {
+public:
+    QuietStderr() {
+        std::fflush(stderr);
+        m_file = std::tmpfile();
+        m_saved = m_file ? ::dup(STDERR_FILENO) : -1;
+        if (m_saved >= 0 && ::dup2(::fileno(m_file), STDERR_FILENO) < 0) {
+            ::close(m_saved);
+            m_saved = -1;
+        }
+    }
+    QuietStderr(const QuietStderr&) = delete;
+    QuietStderr& operator=(const QuietStderr&) = delete;
+    // A read that threw: what libpng printed is dropped.
+    ~QuietStderr() { end(false); }
+    // A read that worked: what was printed goes to stderr after all.
+    void passOn() { end(true); }
+
+private:
+    void end(bool passOn) {
+        if (m_saved >= 0) {
+            std::fflush(stderr);
+            ::dup2(m_saved, STDERR_FILENO);
+            ::close(m_saved);
+            m_saved = -1;
+            if (passOn) {
+                std::rewind(m_file);
+                char buffer[4096];
+                std::size_t n = 0;
+                while ((n = std::fread(buffer, 1, sizeof buffer, m_file)) > 0)
+                    std::fwrite(buffer, 1, n, stderr);
+            }
+        }
+        if (m_file)
+            std::fclose(m_file);
+        m_file = nullptr;
+    }
+    std::FILE* m_file = nullptr;
+    int m_saved = -1;
+};
+
 void checkImageHeader(const std::string& path, const OIIO::ImageSpec& spec) {
     checkImageSize(path, spec.width, spec.height, std::max(1, spec.depth), spec.nchannels);
 }
@@ -190,6 +235,20 @@ void checkImageSize(const std::string& path, long long width, long long height, 
                          " channels; accepted are up to " + std::to_string(kMaxImageChannels));
 }
 
+void checkImageFile(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError(path + ": image not found");
+    QuietStderr quiet;
+    auto input = OIIO::ImageInput::open(path);
+    if (!input)
+        throw InputError(path + ": cannot read the image (" + oneLine(OIIO::geterror()) +
+                         "); accepted: any format OpenImageIO reads, e.g. PNG, TIFF, EXR, JPEG");
+    checkImageHeader(path, input->spec());
+    input->close();
+    quiet.passOn();
+}
+
 std::vector<float> loadLuminance(const std::string& path, int width, int height) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
@@ -197,6 +256,7 @@ std::vector<float> loadLuminance(const std::string& path, int width, int height)
     // ImageInput rather than ImageBuf(path): the latter goes through OIIO's
     // process-wide image cache, which keeps stale entries for a file that was
     // rewritten and crashed after reading a truncated PNG.
+    QuietStderr quiet;
     auto input = OIIO::ImageInput::open(path);
     if (!input)
         throw InputError(path + ": cannot read the image (" + oneLine(OIIO::geterror()) +
@@ -212,6 +272,7 @@ std::vector<float> loadLuminance(const std::string& path, int width, int height)
         throw InputError(path + ": cannot read the image's pixels (" + oneLine(input->geterror()) +
                          "); is the file truncated?");
     input->close();
+    quiet.passOn();
     OIIO::ImageSpec floatSpec(spec.width, spec.height, channels, OIIO::TypeDesc::FLOAT);
     const OIIO::ImageBuf source(floatSpec, original.data());
     OIIO::ImageBuf resized;
@@ -241,6 +302,7 @@ RawImage readRawImage(const std::string& path) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
         throw InputError(path + ": raw state image not found");
+    QuietStderr quiet;
     auto input = OIIO::ImageInput::open(path);
     if (!input)
         throw InputError(path + ": cannot read the image (" + oneLine(OIIO::geterror()) +
@@ -257,6 +319,7 @@ RawImage readRawImage(const std::string& path) {
         throw InputError(path + ": cannot read the image's pixels (" + oneLine(input->geterror()) +
                          "); is the file truncated?");
     input->close();
+    quiet.passOn();
     RawImage raw{State(spec.width, spec.height, spec.nchannels), spec.channelnames};
     for (int c = 0; c < spec.nchannels; ++c) {
         float* p = raw.state.plane(c);

@@ -693,4 +693,31 @@ void validateSession(const Session& s, const std::string& source) {
     validateTiles(s, source);
 }
 
+namespace {
+
+void orientationImages(const OrientationField& field, std::vector<std::string>& images) {
+    if (field.type == OrientationField::Type::ImageGradient)
+        images.push_back(field.image);
+    for (const OrientationField& part : field.parts)
+        orientationImages(part, images);
+}
+
+} // namespace
+
+std::vector<std::string> sessionImages(const Session& s) {
+    std::vector<std::string> images;
+    for (const auto& [name, map] : s.paramMaps)
+        if (map.field == ParamMapSpec::Field::Image)
+            images.push_back(map.image);
+    if (s.diffusion.map) {
+        orientationImages(s.diffusion.map->orientation, images);
+        if (!s.diffusion.map->scaleImage.empty())
+            images.push_back(s.diffusion.map->scaleImage);
+    }
+    for (std::string& image : images)
+        if (!s.baseDir.empty() && !std::filesystem::path(image).is_absolute())
+            image = (std::filesystem::path(s.baseDir) / image).string();
+    return images;
+}
+
 } // namespace morphogen

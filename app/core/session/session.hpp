@@ -157,4 +157,8 @@ void applySteps(Session& session, int steps, const std::string& flag);
 // Checks params against the model's ranges and the grid against limits.
 void validateSession(const Session& session, const std::string& source);
 
+// The image files a run of the session reads (parameter maps, orientation
+// and scale images), resolved against its baseDir as the run resolves them.
+std::vector<std::string> sessionImages(const Session& session);
+
 } // namespace morphogen
