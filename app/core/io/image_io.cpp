@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -166,12 +167,13 @@ namespace morphogen {
 namespace {
 
 // libpng (under OIIO) prints its own "libpng error: ..." line on stderr
-// before OIIO reports the same error: while an image is read, stderr goes to
-// a temporary file. A failed read's text is in the InputError already; a
-// successful read's messages (warnings) are passed on as they were.
+// before OIIO reports the same error, which the InputError then quotes:
+// while an image is opened and read, stderr goes to a temporary file, and
+// what was printed there is passed on afterwards, less libpng's own lines
+// when the read failed. One image at a time (stderr is the process's).
 class QuietStderr {
 public:
-    QuietStderr() {
+    QuietStderr() : m_lock(mutex()) {
         std::fflush(stderr);
         m_file = std::tmpfile();
         m_saved = m_file ? ::dup(STDERR_FILENO) : -1;
@@ -182,30 +184,33 @@ public:
     }
     QuietStderr(const QuietStderr&) = delete;
     QuietStderr& operator=(const QuietStderr&) = delete;
-    // A read that threw: what libpng printed is dropped.
+    // A read that threw.
     ~QuietStderr() { end(false); }
-    // A read that worked: what was printed goes to stderr after all.
+    // A read that worked: libpng's warnings are passed on too.
     void passOn() { end(true); }
 
 private:
-    void end(bool passOn) {
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    void end(bool succeeded) {
         if (m_saved >= 0) {
             std::fflush(stderr);
             ::dup2(m_saved, STDERR_FILENO);
             ::close(m_saved);
             m_saved = -1;
-            if (passOn) {
-                std::rewind(m_file);
-                char buffer[4096];
-                std::size_t n = 0;
-                while ((n = std::fread(buffer, 1, sizeof buffer, m_file)) > 0)
-                    std::fwrite(buffer, 1, n, stderr);
-            }
+            std::rewind(m_file);
+            char line[4096];
+            while (std::fgets(line, sizeof line, m_file))
+                if (succeeded || std::strncmp(line, "libpng ", 7) != 0)
+                    std::fputs(line, stderr);
         }
         if (m_file)
             std::fclose(m_file);
         m_file = nullptr;
     }
+    std::lock_guard<std::mutex> m_lock;
     std::FILE* m_file = nullptr;
     int m_saved = -1;
 };
