@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <initializer_list>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -121,8 +121,8 @@ public:
         // that float: dt 1e-6 comes back as 9.99999997e-07. A value whose
         // float is a bound's float is the bound (clamped), so every session
         // the program writes reads back.
-        const bool inRange = (v >= min && v <= max) ||
-                             (asFloat(v) >= asFloat(min) && asFloat(v) <= asFloat(max));
+        const bool inRange =
+            (v >= min && v <= max) || (asFloat(v) >= asFloat(min) && asFloat(v) <= asFloat(max));
         if (!std::isfinite(v) || !inRange) {
             std::ostringstream os;
             os << "is " << v << ", accepted range is [" << min << ", " << max << "]";
