@@ -75,11 +75,11 @@ std::unique_ptr<Context> createHeadlessContext(std::optional<ContextKind> reques
     if (!requested) {
         if (const char* env = std::getenv(kContextEnvVar); env && *env) {
             requested = parseContextKind(env);
+            // Bad input like --context bogus: exit 2, not a fallback to the CPU.
             if (!requested)
-                throw std::runtime_error(
-                    std::string(kContextEnvVar) + "='" + env +
-                    "' is not a context kind (accepted: " + contextKindNames() + ")" +
-                    didYouMean(env, splitNameList(contextKindNames())));
+                throw InputError(std::string(kContextEnvVar) + "='" + env +
+                                 "' is not a context kind (accepted: " + contextKindNames() + ")" +
+                                 didYouMean(env, splitNameList(contextKindNames())));
         }
     }
     std::optional<DeviceRequest> device;

@@ -222,8 +222,10 @@ TEST(Session, BrokenModelChangingStagesAreNamed) {
         {R"({"model": "meinhardt_stripes", "freeze": {"chemical": "g1"}})", "",
          "'stages[1].freeze.chemical' is 'g1', not a chemical of model 'turing_turk' (the "
          "previous stage's model"},
-        {R"({"model": "meinhardt_stripes", "reset": {"a": 4}})", "",
+        {R"({"model": "meinhardt_stripes", "freeze": {"chemical": "b"}, "reset": {"a": 4}})", "",
          "'stages[1].reset.a' is not a chemical of model 'meinhardt_stripes'"},
+        {R"({"model": "meinhardt_stripes", "reset": {"g1": 4}})", "",
+         "'stages[1].reset' needs frozen cells: add a \"freeze\" rule"},
         {R"({"model": "meinhardt_stripes", "init": {"base": {"a": 1}}})", "",
          "'stages[1].init.base.a' is not a chemical of model 'meinhardt_stripes'"},
         {R"({"model": "meinhardt_stripes", "init": {"type": "blob"}})", "",

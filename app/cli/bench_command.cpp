@@ -145,7 +145,8 @@ Convergence timeToConverge(const Session& session, const SimulatorFactory& make,
     return result;
 }
 
-std::vector<int> parseSizes(const std::string& text, const std::string& flag = "--sizes") {
+// A comma-separated list of sizes given to `flag`.
+std::vector<int> parseSizes(const std::string& flag, const std::string& text) {
     std::vector<int> sizes;
     std::stringstream in(text);
     std::string item;
@@ -163,11 +164,15 @@ std::vector<int> parseSizes(const std::string& text, const std::string& flag = "
 }
 
 void checkFlags(const BenchFlags& f) {
-    parseSizes(f.sizes);
-    parseSizes(f.operatorSizes, "--operator-sizes"); // refused before any row runs
-    parseSizes(f.memorySizes, "--memory-sizes");
-    if (!(f.seconds > 0))
-        throw InputError("--seconds must be positive");
+    parseSizes("--sizes", f.sizes);
+    parseSizes("--operator-sizes", f.operatorSizes); // refused before any row runs
+    parseSizes("--memory-sizes", f.memorySizes);
+    if (!(f.seconds > 0 && f.seconds <= kMaxBenchSeconds)) {
+        std::ostringstream os;
+        os << "--seconds " << f.seconds << ": accepted are numbers in (0, " << kMaxBenchSeconds
+           << "] (seconds per measurement)";
+        throw InputError(os.str());
+    }
     if (f.convergenceSize < 32 || f.convergenceSize > kMaxGridSide || f.convergenceSize % 2 != 0)
         throw InputError("--convergence-size " + std::to_string(f.convergenceSize) +
                          ": accepted are even sizes in 32.." + std::to_string(kMaxGridSide));
@@ -200,7 +205,7 @@ nlohmann::json throughputRows(const Session& base, const BenchFlags& f, bool gpu
     std::printf("%-6s %14s %14s %14s %10s %14s %12s\n", "size", "gpu step it/s", "gpu copy it/s",
                 "gpu cells/s", "step/copy", "cpu it/s", "cpu cells/s");
     nlohmann::json rows = nlohmann::json::array();
-    for (int n : parseSizes(f.sizes)) {
+    for (int n : parseSizes("--sizes", f.sizes)) {
         Session s = base;
         s.width = s.height = n;
         const double cells = double(n) * n;
@@ -248,7 +253,7 @@ nlohmann::json operatorRows(const Session& base, const BenchFlags& f, bool gpuRo
     std::printf("\n%-16s %-6s %14s %10s %14s %10s\n", "operator", "size", "gpu it/s", "vs 5-point",
                 "cpu it/s", "vs 5-point");
     nlohmann::json rows = nlohmann::json::array();
-    for (int n : parseSizes(f.operatorSizes)) {
+    for (int n : parseSizes("--operator-sizes", f.operatorSizes)) {
         double gpuBase = 0, cpuBase = 0;
         for (auto& [name, variant] : operatorVariants(base)) {
             Session s = variant;
@@ -362,7 +367,7 @@ void bench(const BenchFlags& f) {
         report["convergence"] = convergenceRows(f);
     if (!f.noMemory) {
         MemoryBench memory{
-            parseSizes(f.memorySizes, "--memory-sizes"), f.preset, {}, f.context, f.gpuDevice};
+            parseSizes("--memory-sizes", f.memorySizes), f.preset, {}, f.context, f.gpuDevice};
         if (!f.noCpu)
             memory.backends.push_back("cpu");
         if (gpuRows)
@@ -391,7 +396,9 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option(
         "--gpu-device", flags->gpuDevice,
         "EGL display number (default: $MORPHOGEN_GPU_DEVICE, else the first hardware renderer)");
-    cmd->add_option("--seconds", flags->seconds, "time per measurement (default 1)");
+    cmd->add_option("--seconds", flags->seconds,
+                    "time per measurement, up to " + std::to_string(int(kMaxBenchSeconds)) +
+                        " (default 1)");
     cmd->add_flag("--no-cpu", flags->noCpu, "skip the CPU backend");
     cmd->add_flag("--no-throughput", flags->noThroughput,
                   "skip the step-throughput and operator rows");

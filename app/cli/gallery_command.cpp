@@ -42,8 +42,15 @@ struct Entry {
     std::string error; // empty on success
 };
 
-int scaledSteps(int steps, double scale) {
-    return std::max(1, int(std::lround(double(steps) * scale)));
+// Steps times --steps-scale, at least 1; InputError past kMaxSteps (in
+// double, so a large scale cannot wrap an int into a small count).
+int scaledSteps(int steps, double scale, const std::string& preset) {
+    const double scaled = std::round(double(steps) * scale);
+    if (scaled > double(kMaxSteps))
+        throw InputError("--steps-scale: preset " + preset + "'s " + std::to_string(steps) +
+                         " steps scale to more than " + std::to_string(kMaxSteps) +
+                         ", the most a run accepts");
+    return std::max(1, int(scaled));
 }
 
 // --size and --steps-scale applied to a preset. A coarse-to-fine schedule keeps
@@ -60,22 +67,27 @@ void applyOverrides(Session& s, const GalleryFlags& f) {
                 level.height =
                     std::max(1, int(std::lround(double(level.height) * f.size / finest.height)));
             }
-            level.steps = scaledSteps(level.steps, f.stepsScale);
+            level.steps = scaledSteps(level.steps, f.stepsScale, s.name);
         }
         applySchedule(s, std::move(levels));
     } else {
         if (f.size > 0)
             s.width = s.height = f.size;
-        s.steps = scaledSteps(s.steps, f.stepsScale);
+        s.steps = scaledSteps(s.steps, f.stepsScale, s.name);
         // A cascade's steps are its stages' total: scale each stage instead
         // (a stage of 0 steps only freezes or resets, and stays so).
         if (!s.stages.empty()) {
-            s.steps = 0;
+            long long total = 0;
             for (Stage& stage : s.stages) {
                 if (stage.steps > 0)
-                    stage.steps = scaledSteps(stage.steps, f.stepsScale);
-                s.steps += stage.steps;
+                    stage.steps = scaledSteps(stage.steps, f.stepsScale, s.name);
+                total += stage.steps;
             }
+            if (total > kMaxSteps)
+                throw InputError("--steps-scale: preset " + s.name + "'s stages scale to " +
+                                 std::to_string(total) + " steps in all, more than " +
+                                 std::to_string(kMaxSteps));
+            s.steps = int(total);
         }
     }
     validateSession(s, "preset " + s.name);
@@ -298,6 +310,11 @@ void gallery(const GalleryFlags& f) {
     if (!(f.stepsScale > 0) || !std::isfinite(f.stepsScale))
         throw InputError("--steps-scale must be a positive number");
     std::vector<Session> presets = selectPresets(f.only);
+    // Every preset's overrides are checked before the first one runs.
+    for (const Session& preset : presets) {
+        Session s = preset;
+        applyOverrides(s, f);
+    }
     const gl::BackendChoice choice = gl::parseBackendChoice(f.backend);
     const auto contextKind = gl::parseContextFlag(f.context);
     const auto gpuDevice = gl::parseGpuDeviceFlag(f.gpuDevice);
@@ -348,11 +365,15 @@ void addGalleryCommand(CLI::App& app) {
         "gallery", "Render every built-in preset into DIR (NAME.png + NAME.json, the session that "
                    "reproduces it) and write DIR/index.html, a page of thumbnails");
     cmd->add_option("DIR", flags->dir, "output folder (created if missing)")->required();
+    // The range check also refuses -1, the value that stands for "not given".
     cmd->add_option("--size", flags->size,
-                    "grid size N for every preset (coarse-to-fine schedules are scaled so the "
-                    "finest level is N)");
+                    "grid size N, 1.." + std::to_string(kMaxGridSide) +
+                        ", for every preset (coarse-to-fine schedules are scaled so the finest "
+                        "level is N)")
+        ->check(CLI::Range(1, kMaxGridSide));
     cmd->add_option("--steps-scale", flags->stepsScale,
-                    "multiply every preset's steps (at least 1 per level; default 1)");
+                    "multiply every preset's steps (at least 1 per level, at most " +
+                        std::to_string(kMaxSteps) + " in all; default 1)");
     cmd->add_option("--backend", flags->backend, "auto, gpu or cpu (default auto)");
     cmd->add_option(
         "--context", flags->context,

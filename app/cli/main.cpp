@@ -7,6 +7,7 @@
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/limits.hpp"
 
 int main(int argc, char** argv) {
     morphogen::cli::writePeakMemoryAtExit(); // for `bench`'s memory rows, when they ask
@@ -14,6 +15,13 @@ int main(int argc, char** argv) {
     CLI::App app{"Morphogen: reaction-diffusion textures (Turing, Gray-Scott) on the GPU or CPU",
                  "morphogen"};
     app.require_subcommand(1);
+    using namespace morphogen;
+    app.footer("Limits: grid side " + std::to_string(kMaxGridSide) + ", " +
+               std::to_string(kMaxSteps) + " steps per run, " + std::to_string(kMaxStages) +
+               " stages, " + std::to_string(kMaxScheduleLevels) + " schedule levels, " +
+               std::to_string(kMaxSweepTiles) + " sweep tiles, images up to " +
+               std::to_string(kMaxImageSide) + " pixels per side, JSON files up to 16 MiB and " +
+               std::to_string(kMaxJsonDepth) + " levels deep (README.md, Limits).");
     morphogen::cli::addRenderCommand(app);
     morphogen::cli::addPresetsCommand(app);
     morphogen::cli::addBenchCommand(app);

@@ -11,6 +11,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/exploration.hpp"
+#include "cli/flag_values.hpp"
 #include "cli/plot_frame.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
@@ -36,8 +37,8 @@ struct MapFlags {
     std::string x, y;
     std::string out;
     int size = kMapLength;
-    int steps = -1;
-    long long seed = -1;
+    std::string steps; // checked by flag_values.hpp
+    std::string seed;
     std::string tensor;
     std::vector<std::string> params;
     std::string backend = "auto";
@@ -101,10 +102,10 @@ MapPlan planMap(const MapFlags& f) {
                          ")" + didYouMean(f.edges, splitNameList(edgeModeNames())));
     s.edges = *edges;
     s.schedule.clear();
-    if (f.steps >= 0)
-        applySteps(s, f.steps, "--steps");
-    if (f.seed >= 0)
-        s.seed = std::uint64_t(f.seed);
+    if (!f.steps.empty())
+        applySteps(s, int(integerFlag("--steps", f.steps, 0, kMaxSteps)), "--steps");
+    if (!f.seed.empty())
+        s.seed = std::uint64_t(integerFlag("--seed", f.seed, 0, kMaxSeed));
     for (const std::string& p : f.params)
         applyParamOverride(s, p);
     if (!f.tensor.empty()) {
@@ -216,8 +217,10 @@ void addMapCommand(CLI::App& app) {
     cmd->add_option("--size", flags->size,
                     "map resolution in cells (default 512: one cell per unit; larger sizes are "
                     "the same map in more detail)");
-    cmd->add_option("--steps", flags->steps, "steps (default: the preset's, or 10000)");
-    cmd->add_option("--seed", flags->seed, "random seed");
+    cmd->add_option("--steps", flags->steps,
+                    "steps, 0.." + std::to_string(kMaxSteps) + " (default: the preset's, or 10000)")
+        ->type_name("N");
+    cmd->add_option("--seed", flags->seed, "random seed, 0..2^53")->type_name("N");
     cmd->add_option("--tensor", flags->tensor,
                     "generalized diffusion for every chemical: a..f or components (McGraw Fig. 6)");
     cmd->add_option("--param", flags->params, "fix another parameter: name=value (repeatable)");

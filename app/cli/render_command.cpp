@@ -7,6 +7,7 @@
 
 #include "cli/colour_flags.hpp"
 #include "cli/commands.hpp"
+#include "cli/flag_values.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/knob_flags.hpp"
 #include "cli/progress.hpp"
@@ -37,14 +38,14 @@ struct RenderFlags {
     std::string out;
     std::string sessionOut;
     std::string size;
-    int steps = -1;
-    long long seed = -1;
-    double dt = -1;
+    std::string steps; // numbers with a range are text until flag_values.hpp checks them
+    std::string seed;
+    std::string dt;
     std::vector<std::string> params;
     std::string edges;
     std::string stencil;
     std::string integrator;
-    int relaxationPasses = -1;
+    std::string relaxationPasses;
     std::string schedule;
     std::string backend = "auto";
     std::string context;
@@ -73,35 +74,10 @@ E parseFlag(const std::string& flag, const std::string& text,
     return *value;
 }
 
-void parseSize(const std::string& text, Session& s);
-
-// "128:4000,256:2000" (size:steps, size N or WxH), coarsest first.
-std::vector<ScheduleLevel> parseSchedule(const std::string& text) {
-    std::vector<ScheduleLevel> levels;
-    std::stringstream in(text);
-    std::string item;
-    while (std::getline(in, item, ',')) {
-        const auto colon = item.find(':');
-        Session probe;
-        char* end = nullptr;
-        const long steps =
-            colon == std::string::npos ? -1 : std::strtol(item.c_str() + colon + 1, &end, 10);
-        if (colon == std::string::npos || steps < 0 || *end != '\0')
-            throw InputError("--schedule '" + text + "': '" + item +
-                             "' is not size:steps (e.g. 128:4000,256:2000)");
-        parseSize(item.substr(0, colon), probe);
-        levels.push_back({probe.width, probe.height, int(steps)});
-    }
-    if (levels.empty())
-        throw InputError("--schedule is empty");
-    for (std::size_t i = 1; i < levels.size(); ++i)
-        if (levels[i].width < levels[i - 1].width || levels[i].height < levels[i - 1].height)
-            throw InputError("--schedule '" + text + "': levels must go from coarse to fine");
-    return levels;
-}
-
-void parseSize(const std::string& text, Session& s) {
-    int w = 0, h = 0;
+// "N" or "WxH" with sides in 1..kMaxGridSide; `source` names the flag (and
+// the schedule level) in the message.
+std::pair<int, int> parseSizeText(const std::string& source, const std::string& text) {
+    long long w = 0, h = 0;
     char x = 0, extra = 0;
     std::istringstream in(text);
     bool ok = false;
@@ -112,8 +88,44 @@ void parseSize(const std::string& text, Session& s) {
         h = w;
     }
     if (!ok || w < 1 || h < 1 || w > kMaxGridSide || h > kMaxGridSide)
-        throw InputError("--size '" + text + "': expected N or WxH with sides in 1.." +
+        throw InputError(source + " '" + text + "': expected N or WxH with sides in 1.." +
                          std::to_string(kMaxGridSide));
+    return {int(w), int(h)};
+}
+
+// "128:4000,256:2000" (size:steps, size N or WxH), coarsest first.
+std::vector<ScheduleLevel> parseSchedule(const std::string& text) {
+    std::vector<ScheduleLevel> levels;
+    std::stringstream in(text);
+    std::string item;
+    long long total = 0;
+    while (std::getline(in, item, ',')) {
+        const auto colon = item.find(':');
+        if (colon == std::string::npos)
+            throw InputError("--schedule '" + text + "': '" + item +
+                             "' is not size:steps (e.g. 128:4000,256:2000)");
+        if (levels.size() == std::size_t(kMaxScheduleLevels))
+            throw InputError("--schedule '" + text + "': more than " +
+                             std::to_string(kMaxScheduleLevels) + " levels");
+        const std::string level = "--schedule level " + std::to_string(levels.size() + 1);
+        const auto [w, h] = parseSizeText(level + " size", item.substr(0, colon));
+        const long long steps = integerFlag(level + " steps", item.substr(colon + 1), 0, kMaxSteps);
+        total += steps;
+        levels.push_back({w, h, int(steps)});
+    }
+    if (levels.empty())
+        throw InputError("--schedule is empty");
+    for (std::size_t i = 1; i < levels.size(); ++i)
+        if (levels[i].width < levels[i - 1].width || levels[i].height < levels[i - 1].height)
+            throw InputError("--schedule '" + text + "': levels must go from coarse to fine");
+    if (total > kMaxSteps)
+        throw InputError("--schedule '" + text + "': " + std::to_string(total) +
+                         " steps in all; accepted are up to " + std::to_string(kMaxSteps));
+    return levels;
+}
+
+void parseSize(const std::string& text, Session& s) {
+    const auto [w, h] = parseSizeText("--size", text);
     resizeSession(s, w, h);
 }
 
@@ -131,7 +143,7 @@ Session buildSession(const RenderFlags& f) {
                      f.sessionFile.c_str(), s.width);
     }
     if (!f.schedule.empty()) {
-        if (!f.size.empty() || f.steps >= 0)
+        if (!f.size.empty() || !f.steps.empty())
             throw InputError("--schedule sets the sizes and steps: drop --size and --steps");
         // The runner has no coarse-to-fine path through a cascade; refusing keeps the written
         // session a record of what ran.
@@ -140,14 +152,14 @@ Session buildSession(const RenderFlags& f) {
                              std::to_string(s.stages.size()) +
                              " stages of their own steps): drop --schedule, or use --size");
         applySchedule(s, parseSchedule(f.schedule));
-    } else if (!s.schedule.empty() && (!f.size.empty() || f.steps >= 0)) {
+    } else if (!s.schedule.empty() && (!f.size.empty() || !f.steps.empty())) {
         throw InputError("--size and --steps do not apply to a session with a coarse-to-fine "
                          "\"schedule\": edit its levels or use --schedule");
     }
     if (!f.size.empty())
         parseSize(f.size, s);
-    if (f.steps >= 0)
-        applySteps(s, f.steps, "--steps");
+    if (!f.steps.empty())
+        applySteps(s, int(integerFlag("--steps", f.steps, 0, kMaxSteps)), "--steps");
     if (!(f.scale > 0 && f.scale <= 1000))
         throw InputError("--scale " + std::to_string(f.scale) +
                          ": accepted are numbers in (0, 1000] (2: features twice as large)");
@@ -156,18 +168,14 @@ Session buildSession(const RenderFlags& f) {
         s.coarseToFine = false;
     if (!f.integrator.empty())
         s.integrator = parseFlag("--integrator", f.integrator, parseIntegrator, integratorNames());
-    if (f.relaxationPasses != -1) {
-        if (f.relaxationPasses < 1 || f.relaxationPasses > 1000)
-            throw InputError("--relaxation-passes " + std::to_string(f.relaxationPasses) +
-                             ": accepted are 1..1000");
-        s.relaxationPasses = f.relaxationPasses;
-    }
-    if (f.seed >= 0)
-        s.seed = std::uint64_t(f.seed);
-    if (f.dt > 0)
-        s.dt = float(f.dt);
-    else if (f.dt == 0 || (f.dt < 0 && f.dt != -1))
-        throw InputError("--dt must be positive");
+    if (!f.relaxationPasses.empty())
+        s.relaxationPasses =
+            int(integerFlag("--relaxation-passes", f.relaxationPasses, 1, kMaxRelaxationPasses));
+    // The ranges are the session reader's, so that what is written reads back.
+    if (!f.seed.empty())
+        s.seed = std::uint64_t(integerFlag("--seed", f.seed, 0, kMaxSeed));
+    if (!f.dt.empty())
+        s.dt = float(numberFlag("--dt", f.dt, kMinDt, kMaxDt));
     for (const std::string& p : f.params)
         applyParamOverride(s, p);
     for (const std::string& note : applyKnobFlags(f.knobs, s))
@@ -203,7 +211,26 @@ Session buildSession(const RenderFlags& f) {
     applyGradientFlags(f.gradient, f.colormap, s.colormap);
     colormapChemical(s.colormap, s.outputModel());
     validateSession(s, f.sessionFile.empty() ? "preset " + s.name : f.sessionFile);
+    for (const std::string& image : sessionImages(s))
+        checkImageFile(image); // headers only: the run reads them again
     return s;
+}
+
+// Whether two paths name the same file: "./a.json" and "a.json", or a path
+// through a link, are the same even when the file does not exist yet.
+bool samePath(const std::string& a, const std::string& b) {
+    namespace fs = std::filesystem;
+    std::error_code ea, eb;
+    // Absolute first: weakly_canonical leaves a relative path whose first
+    // part does not exist yet ("a.json") relative.
+    const fs::path absoluteA = fs::absolute(a, ea), absoluteB = fs::absolute(b, eb);
+    if (ea || eb)
+        return fs::path(a).lexically_normal() == fs::path(b).lexically_normal();
+    const fs::path pa = fs::weakly_canonical(absoluteA, ea);
+    const fs::path pb = fs::weakly_canonical(absoluteB, eb);
+    if (ea || eb)
+        return absoluteA.lexically_normal() == absoluteB.lexically_normal();
+    return pa == pb;
 }
 
 std::string defaultSessionOut(const std::string& out) {
@@ -225,8 +252,9 @@ void render(const RenderFlags& flags) {
                          " is not supported (accepted: 8, 16)");
     const std::string sessionOut =
         f.sessionOut.empty() && image ? defaultSessionOut(f.out) : f.sessionOut;
-    if (image && sessionOut == f.out)
-        throw InputError("--session-out must differ from --out");
+    if (image && samePath(sessionOut, f.out))
+        throw InputError("--session-out " + sessionOut + " is the image --out " + f.out +
+                         ": give them different paths");
     // Fail before a long run, not after it.
     if (image)
         checkWritable(f.out);
@@ -235,7 +263,7 @@ void render(const RenderFlags& flags) {
     if (f.frames.wanted())
         prepareFrames(f.frames, f.out, session);
 
-    SettleRun settle(f.settle, session, f.sessionFile.empty(), f.steps >= 0);
+    SettleRun settle(f.settle, session, f.sessionFile.empty(), !f.steps.empty());
     checkStability(session);
     const std::string plan = describePlan(session);
     if (!plan.empty())
@@ -332,24 +360,39 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--session-out", flags->sessionOut,
                     "where to write the session JSON (default: --out with .json)");
     cmd->add_option("--size", flags->size,
-                    "resolution N or WxH: the pattern stays the same, with more or less detail");
+                    "resolution N or WxH (sides 1.." + std::to_string(kMaxGridSide) +
+                        "): the pattern stays the same, with more or less detail")
+        ->type_name("N|WxH");
     cmd->add_option("--scale", flags->scale,
                     "make every feature this many times larger in the image (default 1)");
     cmd->add_flag("--no-coarse-to-fine", flags->noCoarseToFine,
                   "run every step at the full size (default: a size over twice the session's "
                   "length runs its steps near one cell per unit, then refines)");
-    cmd->add_option("--steps", flags->steps, "number of steps");
-    cmd->add_option("--seed", flags->seed, "random seed of the initial condition");
-    cmd->add_option("--dt", flags->dt, "time step");
+    cmd->add_option("--steps", flags->steps,
+                    "number of steps, 0.." + std::to_string(kMaxSteps) +
+                        " (a schedule's or a cascade's in all)")
+        ->type_name("N");
+    cmd->add_option("--seed", flags->seed,
+                    "random seed of the initial condition, 0..2^53 (" + std::to_string(kMaxSeed) +
+                        ")")
+        ->type_name("N");
+    std::ostringstream dtHelp;
+    dtHelp << "time step, " << kMinDt << ".." << kMaxDt;
+    cmd->add_option("--dt", flags->dt, dtHelp.str())->type_name("DT");
     cmd->add_option("--param", flags->params,
                     "override a model parameter: name=value (repeatable)");
     cmd->add_option("--edges", flags->edges, "periodic (seamless) or clamped");
     cmd->add_option("--stencil", flags->stencil, "Laplacian: 5-point or 9-point");
     cmd->add_option("--integrator", flags->integrator, "explicit_euler or semi_implicit");
     cmd->add_option("--relaxation-passes,--sweeps", flags->relaxationPasses,
-                    "relaxation passes per semi-implicit step (--sweeps: the old name)");
+                    "relaxation passes per semi-implicit step, 1.." +
+                        std::to_string(kMaxRelaxationPasses) + " (--sweeps: the old name)")
+        ->type_name("N");
     cmd->add_option("--schedule", flags->schedule,
-                    "coarse-to-fine levels size:steps, coarsest first (e.g. 128:4000,256:2000)");
+                    "coarse-to-fine levels size:steps, coarsest first (e.g. 128:4000,256:2000); "
+                    "up to " +
+                        std::to_string(kMaxScheduleLevels) + " levels")
+        ->type_name("SIZE:STEPS,...");
     cmd->add_option("--backend", flags->backend, "auto, gpu or cpu (default auto)");
     cmd->add_option(
         "--context", flags->context,

@@ -4,6 +4,7 @@
 #include <climits>
 #include <cstdio>
 
+#include "cli/flag_values.hpp"
 #include "cli/progress.hpp"
 #include "core/base/errors.hpp"
 
@@ -18,6 +19,15 @@ int& lastSegmentSteps(Session& s) {
     if (!s.schedule.empty())
         return s.schedule.back().steps;
     return s.steps;
+}
+
+long long sessionStepsTotal(const Session& s) {
+    long long total = 0;
+    for (const Stage& stage : s.stages)
+        total += stage.steps;
+    for (const ScheduleLevel& level : s.schedule)
+        total += level.steps;
+    return s.stages.empty() && s.schedule.empty() ? s.steps : total;
 }
 
 void recountSteps(Session& s) {
@@ -45,19 +55,21 @@ void addSettleFlags(CLI::App& command, SettleFlags& flags) {
                      "both stable), at most --max-steps; the default for presets");
     command.add_flag("--no-settle", flags.noSettle,
                      "run a preset's steps as written instead of until settled");
-    command.add_option("--max-steps", flags.maxSteps,
-                       "until settled: cap on the last stage's steps (default 3x its steps)");
+    command
+        .add_option("--max-steps", flags.maxSteps,
+                    "until settled: cap on the last stage's steps, 1.." +
+                        std::to_string(kMaxSteps) + " (default 3x its steps)")
+        ->type_name("N");
 }
 
 SettleRun::SettleRun(const SettleFlags& flags, Session& session, bool preset, bool stepsGiven) {
     if (flags.untilSettled && flags.noSettle)
         throw InputError("--until-settled and --no-settle are exclusive: give one");
-    if (flags.maxSteps != -1 && (flags.maxSteps < 1 || flags.maxSteps > 100000000))
-        throw InputError("--max-steps " + std::to_string(flags.maxSteps) +
-                         ": accepted are 1..100000000");
+    const long long maxSteps =
+        flags.maxSteps.empty() ? -1 : integerFlag("--max-steps", flags.maxSteps, 1, kMaxSteps);
     const bool on = flags.untilSettled || (preset && !stepsGiven && !flags.noSettle);
     if (!on) {
-        if (flags.maxSteps != -1)
+        if (maxSteps != -1)
             throw InputError("--max-steps applies to a run until settled: add --until-settled");
         return;
     }
@@ -65,7 +77,15 @@ SettleRun::SettleRun(const SettleFlags& flags, Session& session, bool preset, bo
         throw InputError("--until-settled does not apply to a batched sweep session");
     int& steps = lastSegmentSteps(session);
     const int nominal = std::max(1, steps);
-    m_cap = flags.maxSteps != -1 ? int(flags.maxSteps) : int(std::min(3LL * nominal, 100000000LL));
+    // The session's steps in all stay within kMaxSteps, so the session written
+    // after the run reads back.
+    const long long others = std::max(0LL, sessionStepsTotal(session) - steps);
+    const long long room = std::max(1LL, kMaxSteps - others);
+    if (maxSteps > room)
+        throw InputError("--max-steps " + flags.maxSteps + ": with the " + std::to_string(others) +
+                         " steps before the last stage, accepted are 1.." + std::to_string(room) +
+                         " (" + std::to_string(kMaxSteps) + " steps in all)");
+    m_cap = maxSteps != -1 ? int(maxSteps) : int(std::min(3LL * nominal, room));
     // Checks every 1/40 of the nominal steps; never before half of them, so a
     // slow start (noise decaying before a Turing pattern grows) is not taken
     // for a settled one.

@@ -19,7 +19,7 @@ class Progress;
 struct SettleFlags {
     bool untilSettled = false;
     bool noSettle = false;
-    long long maxSteps = -1; // cap on the last stage or level, in session steps
+    std::string maxSteps; // cap on the last stage or level, in session steps (empty: not given)
 };
 
 void addSettleFlags(CLI::App& command, SettleFlags& flags);

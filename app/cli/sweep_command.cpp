@@ -15,6 +15,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/exploration.hpp"
+#include "cli/flag_values.hpp"
 #include "cli/plot_frame.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_output.hpp"
@@ -40,8 +41,8 @@ struct SweepFlags {
     std::string grid;
     std::string out;
     int tile = 128;
-    int steps = -1;
-    long long seed = -1;
+    std::string steps; // checked by flag_values.hpp
+    std::string seed;
     std::string backend = "auto";
     std::string context;
     std::string gpuDevice;
@@ -60,6 +61,11 @@ void parseGrid(const std::string& text, int& columns, int& rows) {
     rows = std::stoi(m[2]);
     if (columns < 1 || rows < 1)
         throw InputError("--grid '" + text + "': needs at least one column and one row");
+    // Every tile is a simulation, a picture on the sheet and a row of stats.
+    if (static_cast<long long>(columns) * rows > kMaxSweepTiles)
+        throw InputError("--grid '" + text + "': " + std::to_string(columns * rows) +
+                         " tiles; accepted are up to " + std::to_string(kMaxSweepTiles) +
+                         " (e.g. 64x64)");
 }
 
 std::string formatValue(double v) {
@@ -254,7 +260,8 @@ SweepSpec sweepSpec(const SweepFlags& f) {
     if (f.tile < 8 || f.tile > 4096)
         throw InputError("--tile " + std::to_string(f.tile) + ": accepted are 8..4096 cells");
     spec.tile = f.tile;
-    if (spec.columns * spec.tile > kMaxGridSide || spec.rows * spec.tile > kMaxGridSide)
+    if (static_cast<long long>(spec.columns) * spec.tile > kMaxGridSide ||
+        static_cast<long long>(spec.rows) * spec.tile > kMaxGridSide)
         throw InputError("--grid " + f.grid + " of --tile " + std::to_string(f.tile) + " exceeds " +
                          std::to_string(kMaxGridSide) + " cells per side");
     Session& base = spec.base;
@@ -268,10 +275,10 @@ SweepSpec sweepSpec(const SweepFlags& f) {
     base.schedule.clear();
     base.stages.clear();
     base.paramMaps.clear();
-    if (f.steps >= 0)
-        base.steps = f.steps;
-    if (f.seed >= 0)
-        base.seed = std::uint64_t(f.seed);
+    if (!f.steps.empty())
+        base.steps = int(integerFlag("--steps", f.steps, 0, kMaxSteps));
+    if (!f.seed.empty())
+        base.seed = std::uint64_t(integerFlag("--seed", f.seed, 0, kMaxSeed));
     base.colormap.name = canonicalColormapName(base.colormap.name);
     colormapAnchors(base.colormap); // 'custom' without stops is refused before the run
 
@@ -415,11 +422,17 @@ void addSweepCommand(CLI::App& app) {
     cmd->add_option("--preset", flags->preset, "or a preset to start from");
     cmd->add_option("--x", flags->x, "PARAM:MIN:MAX across the columns")->required();
     cmd->add_option("--y", flags->y, "PARAM:MIN:MAX up the rows")->required();
-    cmd->add_option("--grid", flags->grid, "COLUMNSxROWS, e.g. 16x16")->required();
+    cmd->add_option("--grid", flags->grid,
+                    "COLUMNSxROWS, e.g. 16x16; up to " + std::to_string(kMaxSweepTiles) + " tiles")
+        ->required();
     cmd->add_option("--out", flags->out, "output folder")->required();
-    cmd->add_option("--tile", flags->tile, "cells per tile side (default 128)");
-    cmd->add_option("--steps", flags->steps, "steps (default: the preset's, or 10000)");
-    cmd->add_option("--seed", flags->seed, "random seed");
+    cmd->add_option("--tile", flags->tile,
+                    "cells per tile side, 8..4096, at most " + std::to_string(kMaxGridSide) +
+                        " cells per side in all (default 128)");
+    cmd->add_option("--steps", flags->steps,
+                    "steps, 0.." + std::to_string(kMaxSteps) + " (default: the preset's, or 10000)")
+        ->type_name("N");
+    cmd->add_option("--seed", flags->seed, "random seed, 0..2^53")->type_name("N");
     cmd->add_option("--backend", flags->backend, "auto, gpu or cpu (default auto)");
     cmd->add_option("--context", flags->context, "GL context: egl or osmesa");
     cmd->add_option(

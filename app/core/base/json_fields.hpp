@@ -2,8 +2,10 @@
 // Strict reading of JSON objects for sessions and presets: every problem
 // becomes an InputError naming the source, the field path and what is accepted.
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -17,6 +19,16 @@
 #include "core/base/names.hpp"
 
 namespace morphogen {
+
+// The float a double rounds to, infinite past float's range (where a plain
+// conversion is undefined).
+inline float asFloat(double v) {
+    const double largest = std::numeric_limits<float>::max();
+    if (v > largest || v < -largest)
+        return v > 0 ? std::numeric_limits<float>::infinity()
+                     : -std::numeric_limits<float>::infinity();
+    return float(v);
+}
 
 inline std::string typeName(const nlohmann::json& j) {
     return j.type_name();
@@ -105,12 +117,18 @@ public:
         if (!j.is_number())
             failField(key, "must be a number, got " + typeName(j));
         const double v = j.get<double>();
-        if (!std::isfinite(v) || v < min || v > max) {
+        // Most fields are stored as floats and written back as the double of
+        // that float: dt 1e-6 comes back as 9.99999997e-07. A value whose
+        // float is a bound's float is the bound (clamped), so every session
+        // the program writes reads back.
+        const bool inRange =
+            (v >= min && v <= max) || (asFloat(v) >= asFloat(min) && asFloat(v) <= asFloat(max));
+        if (!std::isfinite(v) || !inRange) {
             std::ostringstream os;
             os << "is " << v << ", accepted range is [" << min << ", " << max << "]";
             failField(key, os.str());
         }
-        return v;
+        return std::clamp(v, min, max);
     }
 
     long long integer(const std::string& key, long long fallback, long long min,
@@ -120,11 +138,15 @@ public:
             return fallback;
         if (!j->is_number_integer())
             failField(key, "must be an integer, got " + typeName(*j));
-        const long long v =
-            j->is_number_unsigned() ? (long long)j->get<unsigned long long>() : j->get<long long>();
+        const std::string accepted =
+            ", accepted range is [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+        // Past LLONG_MAX (up to 2^64 - 1) a signed cast would wrap to a negative value.
+        if (j->is_number_unsigned() &&
+            j->get<unsigned long long>() > static_cast<unsigned long long>(max))
+            failField(key, "is " + std::to_string(j->get<unsigned long long>()) + accepted);
+        const long long v = j->get<long long>();
         if (v < min || v > max)
-            failField(key, "is " + std::to_string(v) + ", accepted range is [" +
-                               std::to_string(min) + ", " + std::to_string(max) + "]");
+            failField(key, "is " + std::to_string(v) + accepted);
         return v;
     }
 

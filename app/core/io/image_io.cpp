@@ -2,16 +2,24 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <mutex>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
 #include "core/base/errors.hpp"
 #include "core/io/output_files.hpp"
+#include "core/base/json_input.hpp"
+#include "core/base/limits.hpp"
 
 namespace morphogen {
 
@@ -34,19 +42,36 @@ ImageFormat imageFormatForPath(const std::string& path) {
 void checkWritable(const std::string& path) {
     const fs::path p(path);
     const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    // The writers add a temporary suffix or prefix to the name: leave room for it.
+    const std::size_t name = p.filename().string().size();
+    if (name > std::size_t(kMaxOutputNameBytes))
+        throw InputError(path + ": the file name is " + std::to_string(name) +
+                         " bytes long; accepted are names of up to " +
+                         std::to_string(kMaxOutputNameBytes) + " bytes");
+    if (path.size() > std::size_t(kMaxOutputPathBytes))
+        throw InputError(path.substr(0, 60) + "...: the path is " + std::to_string(path.size()) +
+                         " bytes long; accepted are paths of up to " +
+                         std::to_string(kMaxOutputPathBytes) + " bytes");
     std::error_code ec;
     if (!fs::is_directory(dir, ec))
         throw InputError(path + ": cannot write here: folder '" + dir.string() +
                          "' does not exist");
     if (fs::is_directory(p, ec))
         throw InputError(path + ": cannot write here: it is a folder");
-    const std::string probe = path + ".probe";
-    {
-        std::ofstream out(probe);
-        if (!out)
-            throw InputError(path + ": cannot write here: folder '" + dir.string() +
-                             "' is not writable");
+    // An existing file that may not be replaced (immutable, on a read-only
+    // file system) fails only at the end of the run, when it is renamed over.
+    if (fs::exists(p, ec) && ::access(path.c_str(), W_OK) != 0 &&
+        (errno == EPERM || errno == EROFS))
+        throw InputError(path + ": cannot replace the existing file: " + std::strerror(errno) +
+                         (errno == EPERM ? " (is it immutable? lsattr shows it)" : ""));
+    const std::string probe = (dir / (".~probe." + std::to_string(::getpid()))).string();
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    if (fd < 0) {
+        const int error = errno;
+        throw InputError(path + ": cannot write here: folder '" + dir.string() +
+                         "' is not writable (" + std::strerror(error) + ")");
     }
+    ::close(fd);
     fs::remove(probe, ec);
 }
 
@@ -181,6 +206,96 @@ void writeRawImage(const std::string& path, const State& state,
 
 namespace morphogen {
 
+namespace {
+
+// libpng (under OIIO) prints its own "libpng error: ..." line on stderr
+// before OIIO reports the same error, which the InputError then quotes:
+// while an image is opened and read, stderr goes to a temporary file, and
+// what was printed there is passed on afterwards, less libpng's own lines
+// when the read failed. One image at a time (stderr is the process's).
+class QuietStderr {
+public:
+    QuietStderr() : m_lock(mutex()) {
+        std::fflush(stderr);
+        m_file = std::tmpfile();
+        m_saved = m_file ? ::dup(STDERR_FILENO) : -1;
+        if (m_saved >= 0 && ::dup2(::fileno(m_file), STDERR_FILENO) < 0) {
+            ::close(m_saved);
+            m_saved = -1;
+        }
+    }
+    QuietStderr(const QuietStderr&) = delete;
+    QuietStderr& operator=(const QuietStderr&) = delete;
+    // A read that threw.
+    ~QuietStderr() { end(false); }
+    // A read that worked: libpng's warnings are passed on too.
+    void passOn() { end(true); }
+
+private:
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    void end(bool succeeded) {
+        if (m_saved >= 0) {
+            std::fflush(stderr);
+            ::dup2(m_saved, STDERR_FILENO);
+            ::close(m_saved);
+            m_saved = -1;
+            std::rewind(m_file);
+            char line[4096];
+            while (std::fgets(line, sizeof line, m_file))
+                if (succeeded || std::strncmp(line, "libpng ", 7) != 0)
+                    std::fputs(line, stderr);
+        }
+        if (m_file)
+            std::fclose(m_file);
+        m_file = nullptr;
+    }
+    std::lock_guard<std::mutex> m_lock;
+    std::FILE* m_file = nullptr;
+    int m_saved = -1;
+};
+
+void checkImageHeader(const std::string& path, const OIIO::ImageSpec& spec) {
+    checkImageSize(path, spec.width, spec.height, std::max(1, spec.depth), spec.nchannels);
+}
+
+} // namespace
+
+void checkImageSize(const std::string& path, long long width, long long height, long long depth,
+                    long long channels) {
+    if (width < 1 || height < 1 || channels < 1)
+        throw InputError(path + ": the image is empty");
+    if (depth != 1)
+        throw InputError(path + ": a volume image (" + std::to_string(depth) +
+                         " slices); accepted are 2D images");
+    // 64-bit: a header may declare sides whose product wraps an int.
+    if (width > kMaxImageSide || height > kMaxImageSide || width * height > kMaxImagePixels)
+        throw InputError(path + ": the image is " + std::to_string(width) + " x " +
+                         std::to_string(height) + " pixels; accepted are up to " +
+                         std::to_string(kMaxImageSide) + " pixels per side and " +
+                         std::to_string(kMaxImagePixels) +
+                         " in all (checked from its header, before reading it)");
+    if (channels > kMaxImageChannels)
+        throw InputError(path + ": the image has " + std::to_string(channels) +
+                         " channels; accepted are up to " + std::to_string(kMaxImageChannels));
+}
+
+void checkImageFile(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError(path + ": image not found");
+    QuietStderr quiet;
+    auto input = OIIO::ImageInput::open(path);
+    if (!input)
+        throw InputError(path + ": cannot read the image (" + oneLine(OIIO::geterror()) +
+                         "); accepted: any format OpenImageIO reads, e.g. PNG, TIFF, EXR, JPEG");
+    checkImageHeader(path, input->spec());
+    input->close();
+    quiet.passOn();
+}
+
 std::vector<float> loadLuminance(const std::string& path, int width, int height) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
@@ -188,30 +303,34 @@ std::vector<float> loadLuminance(const std::string& path, int width, int height)
     // ImageInput rather than ImageBuf(path): the latter goes through OIIO's
     // process-wide image cache, which keeps stale entries for a file that was
     // rewritten and crashed after reading a truncated PNG.
+    QuietStderr quiet;
     auto input = OIIO::ImageInput::open(path);
     if (!input)
-        throw InputError(path + ": cannot read the image (" + OIIO::geterror() +
+        throw InputError(path + ": cannot read the image (" + oneLine(OIIO::geterror()) +
                          "); accepted: any format OpenImageIO reads, e.g. PNG, TIFF, EXR, JPEG");
     const OIIO::ImageSpec spec = input->spec();
-    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
-        throw InputError(path + ": the image is empty");
-    std::vector<float> original(std::size_t(spec.width) * spec.height *
-                                std::size_t(spec.nchannels));
-    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, original.data()))
-        throw InputError(path + ": cannot read the image's pixels (" + input->geterror() +
+    checkImageHeader(path, spec);
+    // Luminance needs the first three channels (or the only one): the rest
+    // (alpha, extra EXR layers) are not decoded.
+    const int channels = spec.nchannels >= 3 ? 3 : 1;
+    std::vector<float> original(std::size_t(spec.width) * std::size_t(spec.height) *
+                                std::size_t(channels));
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, original.data()))
+        throw InputError(path + ": cannot read the image's pixels (" + oneLine(input->geterror()) +
                          "); is the file truncated?");
     input->close();
-    OIIO::ImageSpec floatSpec(spec.width, spec.height, spec.nchannels, OIIO::TypeDesc::FLOAT);
+    quiet.passOn();
+    OIIO::ImageSpec floatSpec(spec.width, spec.height, channels, OIIO::TypeDesc::FLOAT);
     const OIIO::ImageBuf source(floatSpec, original.data());
     OIIO::ImageBuf resized;
-    const OIIO::ROI roi(0, width, 0, height, 0, 1, 0, spec.nchannels);
+    const OIIO::ROI roi(0, width, 0, height, 0, 1, 0, channels);
     if (!OIIO::ImageBufAlgo::resize(resized, source, "", 0.0f, roi))
         throw InputError(path + ": cannot resample the image to " + std::to_string(width) + "x" +
-                         std::to_string(height) + ": " + resized.geterror());
-    std::vector<float> pixels(std::size_t(width) * height * std::size_t(spec.nchannels));
+                         std::to_string(height) + ": " + oneLine(resized.geterror()));
+    std::vector<float> pixels(std::size_t(width) * height * std::size_t(channels));
     resized.get_pixels(roi, OIIO::TypeDesc::FLOAT, pixels.data());
     std::vector<float> luminance(std::size_t(width) * height);
-    const std::size_t nc = std::size_t(spec.nchannels);
+    const std::size_t nc = std::size_t(channels);
     for (std::size_t i = 0; i < luminance.size(); ++i) {
         const float* p = &pixels[i * nc];
         const float l = nc >= 3 ? 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2] : p[0];
@@ -230,13 +349,13 @@ RawImage readRawImage(const std::string& path) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
         throw InputError(path + ": raw state image not found");
+    QuietStderr quiet;
     auto input = OIIO::ImageInput::open(path);
     if (!input)
-        throw InputError(path + ": cannot read the image (" + OIIO::geterror() +
+        throw InputError(path + ": cannot read the image (" + oneLine(OIIO::geterror()) +
                          "); accepted: the .exr (or float .tif) that render --out writes");
     const OIIO::ImageSpec spec = input->spec();
-    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
-        throw InputError(path + ": the image is empty");
+    checkImageHeader(path, spec);
     if (spec.nchannels > kMaxChemicals)
         throw InputError(path + ": " + std::to_string(spec.nchannels) +
                          " channels, more than any model has chemicals (" +
@@ -244,9 +363,10 @@ RawImage readRawImage(const std::string& path) {
     const std::size_t nc = std::size_t(spec.nchannels);
     std::vector<float> px(std::size_t(spec.width) * std::size_t(spec.height) * nc);
     if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()))
-        throw InputError(path + ": cannot read the image's pixels (" + input->geterror() +
+        throw InputError(path + ": cannot read the image's pixels (" + oneLine(input->geterror()) +
                          "); is the file truncated?");
     input->close();
+    quiet.passOn();
     RawImage raw{State(spec.width, spec.height, spec.nchannels), spec.channelnames};
     for (int c = 0; c < spec.nchannels; ++c) {
         float* p = raw.state.plane(c);

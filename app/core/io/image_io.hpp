@@ -62,6 +62,18 @@ void writeRawImage(const std::string& path, const State& state,
 
 namespace morphogen {
 
+// Refuses an image whose header declares a size past the limits
+// (kMaxImageSide per side, kMaxImagePixels in all, kMaxImageChannels), an
+// empty one or a volume: the readers call it before decoding any pixel.
+// Throws InputError naming the file and the accepted sizes.
+void checkImageSize(const std::string& path, long long width, long long height, long long depth,
+                    long long channels);
+
+// Opens an image the run will read and checks its header (checkImageSize)
+// without decoding it: a missing, unreadable or oversized image is an
+// InputError before the run instead of at the start of its segment.
+void checkImageFile(const std::string& path);
+
 // Loads an image's luminance (Rec. 709 weights over its first three
 // channels, or its only channel) resampled to width x height, row 0 at the
 // top, values as stored (0..1 for 8/16-bit files). Throws InputError naming

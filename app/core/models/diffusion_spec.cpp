@@ -4,7 +4,9 @@
 
 #include "core/base/enum_names.hpp"
 #include "core/base/json_fields.hpp"
+#include "core/base/limits.hpp"
 #include "core/models/reaction_model.hpp"
+#include "core/numerics/tensor_sequence.hpp"
 
 namespace morphogen {
 
@@ -49,8 +51,16 @@ void checkChemical(const FieldReader& reader, const std::string& key, const Reac
                                   didYouMean(key, splitNameList(model.chemicalNames())));
 }
 
-OrientationField fieldFromJson(const json& j, const std::string& source, const std::string& path) {
+// `fields` counts the fields read so far in this orientation (a blend's parts
+// through nested blends); `depth` is the number of blends around this one.
+OrientationField fieldFromJson(const json& j, const std::string& source, const std::string& path,
+                               int depth, int& fields) {
     FieldReader reader(j, source, path);
+    if (++fields > kMaxOrientationFields)
+        reader.fail("field '" + path + "'",
+                    "is one field too many: an orientation may hold up to " +
+                        std::to_string(kMaxOrientationFields) +
+                        " fields, counting a blend's parts");
     reader.rejectUnknown({"type", "angle", "centre", "parts", "image"});
     OrientationField field;
     field.type = reader.choice("type", field.type, parseFieldType, nameList(kFieldTypes));
@@ -65,9 +75,14 @@ OrientationField fieldFromJson(const json& j, const std::string& source, const s
         const json* parts = reader.find("parts");
         if (!parts || !parts->is_array() || parts->empty())
             reader.failField("parts", "must be a non-empty array of fields, each with a centre");
+        if (depth >= kMaxBlendDepth)
+            reader.failField("parts", "nest a blend " + std::to_string(depth + 1) +
+                                          " deep; accepted are blends nested up to " +
+                                          std::to_string(kMaxBlendDepth) + " deep");
         for (std::size_t i = 0; i < parts->size(); ++i)
             field.parts.push_back(fieldFromJson((*parts)[i], source,
-                                                reader.path("parts[" + std::to_string(i) + "]")));
+                                                reader.path("parts[" + std::to_string(i) + "]"),
+                                                depth + 1, fields));
     }
     field.image = reader.string("image", "");
     if (field.type == OrientationField::Type::ImageGradient && field.image.empty())
@@ -137,6 +152,11 @@ DiffusionSpec diffusionFromJson(const json& j, const std::string& source,
                     t.failField(it.key(), "must be a tensor set a..f or components like "
                                           "\"xx=1,yy=1,xxxx=-1\"");
                 spec.generalized[it.key()] = it->get<std::string>();
+                try {
+                    parseTensorSequence(spec.generalized[it.key()]); // refused here, not at the run
+                } catch (const InputError& e) {
+                    t.failField(it.key(), std::string("is not accepted: ") + e.what());
+                }
             } else {
                 reader.failField("tensors", "needs type anisotropic or generalized");
             }
@@ -149,6 +169,10 @@ DiffusionSpec diffusionFromJson(const json& j, const std::string& source,
         FieldReader s(*sg, source, reader.path("savitzky_golay"));
         s.rejectUnknown({"window", "degree", "central_second_order"});
         spec.savitzkyGolay.window = int(s.integer("window", 5, 3, 5));
+        // The filter is centred: an even window has no centre cell (4 would run as 5).
+        if (spec.savitzkyGolay.window % 2 == 0)
+            s.failField("window", "is " + std::to_string(spec.savitzkyGolay.window) +
+                                      ", accepted are 3 (3x3) and 5 (5x5)");
         spec.savitzkyGolay.degree = int(s.integer("degree", 4, 2, 6));
         if (const json* c = s.find("central_second_order")) {
             if (!c->is_boolean())
@@ -168,8 +192,10 @@ DiffusionSpec diffusionFromJson(const json& j, const std::string& source,
         FieldReader m(*map, source, reader.path("map"));
         m.rejectUnknown({"orientation", "scale_image", "scale"});
         DiffusionMapSpec mapSpec;
-        if (const json* o = m.find("orientation"))
-            mapSpec.orientation = fieldFromJson(*o, source, m.path("orientation"));
+        if (const json* o = m.find("orientation")) {
+            int fields = 0;
+            mapSpec.orientation = fieldFromJson(*o, source, m.path("orientation"), 0, fields);
+        }
         mapSpec.scaleImage = m.string("scale_image", "");
         if (const json* scale = m.find("scale")) {
             if (!scale->is_array() || scale->size() != 2)

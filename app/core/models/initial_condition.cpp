@@ -115,6 +115,108 @@ nlohmann::json initialConditionToJson(const InitialCondition& init) {
     return j;
 }
 
+namespace {
+
+// Marks every cell (x, y) with an offset (dx, dy) from a centre's cell such
+// that dx^2 + dy^2 <= r^2, wrapping around the edges as a periodic grid
+// would. Row by row: in one row a disc is a run of cells (the widest of the
+// rows that wrap onto it), so the cost is the centres times the rows they
+// reach, plus the cells, however large r is (a radius of 10000 cells on a
+// 32 x 32 grid covers every cell once, not 4e8 times).
+void markDiscs(std::vector<unsigned char>& marked, int width, int height,
+               const std::vector<std::pair<double, double>>& centres, float r) {
+    if (centres.empty() || !(r >= 0.0f))
+        return;
+    const float r2 = r * r;
+    // Every cell is within r of any centre once r passes the grid's diagonal.
+    if (double(r2) >= double(width) * width + double(height) * height) {
+        std::fill(marked.begin(), marked.end(), 1);
+        return;
+    }
+    const int reach = int(std::ceil(r)); // below width + height here
+    // Half-width of the run in the row dy away: the largest dx with
+    // float(dx^2 + dy^2) <= r^2, the comparison a cell-by-cell test makes.
+    auto halfWidth = [&](long long dy) {
+        auto inside = [&](long long dx) { return float(dx * dx + dy * dy) <= r2; };
+        long long dx =
+            (long long)std::floor(std::sqrt(std::max(0.0, double(r2) - double(dy * dy))));
+        while (dx > 0 && !inside(dx))
+            --dx;
+        while (inside(dx + 1))
+            ++dx;
+        return dx;
+    };
+    auto wrap = [](long long v, int n) { return int(((v % n) + n) % n); };
+    // A sweep down the rows with the centres whose discs reach the row: each
+    // centre reaches `rows` rows from cy - reach (wrapping), so at most the
+    // centres are active at once, and one row's runs are summed at a time.
+    const int rows = std::min(2 * reach + 1, height);
+    struct Active {
+        std::size_t centre;
+        int left; // rows still to mark
+    };
+    std::vector<std::vector<std::size_t>> startsAt(static_cast<std::size_t>(height));
+    std::vector<Active> active;
+    std::vector<std::pair<long long, long long>> cells(centres.size());
+    for (std::size_t i = 0; i < centres.size(); ++i) {
+        cells[i] = {(long long)std::floor(centres[i].first),
+                    (long long)std::floor(centres[i].second)};
+        const int first = wrap(cells[i].second - reach, height);
+        startsAt[std::size_t(first)].push_back(i);
+        if (first + rows > height) // the rows past the last one wrap to the top
+            active.push_back({i, first + rows - height});
+    }
+    std::vector<int> edges(std::size_t(width) + 1);
+    for (int y = 0; y < height; ++y) {
+        for (std::size_t i : startsAt[std::size_t(y)])
+            active.push_back({i, std::min(rows, height - y)});
+        if (active.empty())
+            continue;
+        std::fill(edges.begin(), edges.end(), 0);
+        auto run = [&](int a, int b) {
+            ++edges[std::size_t(a)];
+            --edges[std::size_t(b)];
+        };
+        for (std::size_t k = 0; k < active.size();) {
+            const auto [cx, cy] = cells[active[k].centre];
+            // When rows wrap onto one another, the offset nearest the centre
+            // gives the widest run.
+            long long dy = ((y - cy) % height + height) % height;
+            if (dy > height - dy)
+                dy -= height;
+            if (dy >= -reach && dy <= reach && float(dy * dy) <= r2) {
+                const long long half = halfWidth(dy);
+                if (2 * half + 1 >= width) {
+                    run(0, width);
+                } else {
+                    const int x0 = wrap(cx - half, width);
+                    const int end = x0 + int(2 * half + 1);
+                    if (end <= width) {
+                        run(x0, end);
+                    } else {
+                        run(x0, width);
+                        run(0, end - width);
+                    }
+                }
+            }
+            if (--active[k].left == 0) {
+                active[k] = active.back();
+                active.pop_back();
+            } else {
+                ++k;
+            }
+        }
+        int covering = 0;
+        for (int x = 0; x < width; ++x) {
+            covering += edges[std::size_t(x)];
+            if (covering > 0)
+                marked[std::size_t(y) * width + x] = 1;
+        }
+    }
+}
+
+} // namespace
+
 State makeInitialState(const InitialCondition& init, const ReactionModel& model,
                        const std::map<std::string, float>& params, int width, int height,
                        std::uint64_t seed, double cellSize) {
@@ -154,20 +256,7 @@ State makeInitialState(const InitialCondition& init, const ReactionModel& model,
                                          (j + 0.5) * height / double(rows) + dy);
                 }
         }
-        const float r = float(init.spotRadius * cellsPerUnit);
-        const int reach = int(std::ceil(r));
-        for (const auto& [fx, fy] : centres) {
-            const int cx = int(std::floor(fx)), cy = int(std::floor(fy));
-            for (int dy = -reach; dy <= reach; ++dy)
-                for (int dx = -reach; dx <= reach; ++dx) {
-                    if (float(dx * dx + dy * dy) > r * r)
-                        continue;
-                    // Spots wrap around the edges, as a periodic grid would.
-                    const int x = ((cx + dx) % width + width) % width;
-                    const int y = ((cy + dy) % height + height) % height;
-                    marked[std::size_t(y) * width + x] = 1;
-                }
-        }
+        markDiscs(marked, width, height, centres, float(init.spotRadius * cellsPerUnit));
     }
 
     const NoiseField field(seed, width, height, cellSize, true);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/base/limits.hpp"
 #include "core/base/names.hpp"
 
 namespace morphogen {
@@ -150,6 +151,12 @@ TensorSequence parseTensorSequence(const std::string& text) {
         if (value.empty() || *end != '\0' || !std::isfinite(v))
             throw InputError("tensor sequence '" + text + "': '" + value + "' in '" + item +
                              "' is not a finite number");
+        // Larger components only shrink the stable time step below any usable dt.
+        if (std::fabs(v) > kMaxTensorComponent)
+            throw InputError("tensor sequence '" + text + "': component '" + name + "' is " +
+                             value + "; accepted are values in [-" +
+                             std::to_string(int(kMaxTensorComponent)) + ", " +
+                             std::to_string(int(kMaxTensorComponent)) + "]");
         if (seen[std::size_t(index)])
             throw InputError("tensor sequence '" + text + "': component '" +
                              tensorComponents()[std::size_t(index)].name + "' given twice");

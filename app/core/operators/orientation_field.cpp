@@ -44,6 +44,41 @@ double analyticAngle(const OrientationField& f, double x, double y, int width, i
     }
 }
 
+// Sums of `values` (w x h) over the (2r + 1)^2 box around each cell, edges
+// clamped: one running sum along the rows, then one down the columns, so the
+// cost does not grow with r (r is a 32nd of the grid). A window of zeros sums
+// to exactly 0, as a direct sum would (a flat region's angle depends on it),
+// not to the running sum's rounding residue.
+void boxSum(std::vector<double>& values, int w, int h, int r) {
+    std::vector<double> line;
+    auto slide = [&](int n, auto&& at) {
+        line.assign(std::size_t(n), 0.0);
+        double sum = 0;
+        int nonzero = 0;
+        for (int u = -r; u <= r; ++u) {
+            const double v = at(std::clamp(u, 0, n - 1));
+            sum += v;
+            nonzero += v != 0.0;
+        }
+        for (int x = 0; x < n; ++x) {
+            line[std::size_t(x)] = nonzero > 0 ? sum : 0.0;
+            const double in = at(std::min(x + r + 1, n - 1)), out = at(std::max(x - r, 0));
+            sum += in - out;
+            nonzero += int(in != 0.0) - int(out != 0.0);
+        }
+    };
+    for (int y = 0; y < h; ++y) {
+        double* row = &values[std::size_t(y) * w];
+        slide(w, [&](int x) { return row[x]; });
+        std::copy(line.begin(), line.end(), row);
+    }
+    for (int x = 0; x < w; ++x) {
+        slide(h, [&](int y) { return values[std::size_t(y) * w + x]; });
+        for (int y = 0; y < h; ++y)
+            values[std::size_t(y) * w + x] = line[std::size_t(y)];
+    }
+}
+
 std::vector<float> imageGradientAngles(const std::string& path, int w, int h) {
     const std::vector<float> lum = loadLuminance(path, w, h);
     auto at = [&](int x, int y) {
@@ -64,21 +99,13 @@ std::vector<float> imageGradientAngles(const std::string& path, int w, int h) {
             jyy[i] = gy * gy;
         }
     const int r = std::max(1, std::min(w, h) / 32);
+    boxSum(jxx, w, h, r);
+    boxSum(jxy, w, h, r);
+    boxSum(jyy, w, h, r);
     std::vector<float> angles(jxx.size());
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            double a = 0, b = 0, c = 0;
-            for (int v = -r; v <= r; ++v)
-                for (int u = -r; u <= r; ++u) {
-                    const std::size_t i = std::size_t(std::clamp(y + v, 0, h - 1)) * w +
-                                          std::size_t(std::clamp(x + u, 0, w - 1));
-                    a += jxx[i];
-                    b += jxy[i];
-                    c += jyy[i];
-                }
-            // The gradient's doubled angle; isolines run perpendicular to it.
-            angles[std::size_t(y) * w + x] = float(0.5 * std::atan2(2 * b, a - c) + kPi / 2);
-        }
+    for (std::size_t i = 0; i < angles.size(); ++i)
+        // The gradient's doubled angle; isolines run perpendicular to it.
+        angles[i] = float(0.5 * std::atan2(2 * jxy[i], jxx[i] - jyy[i]) + kPi / 2);
     return angles;
 }
 
@@ -100,24 +127,26 @@ std::vector<float> orientationAngles(const OrientationField& field, int width, i
 
     // Blend: orientations are axial (theta ~ theta + pi), so average the
     // doubled-angle vectors, weighted by inverse squared distance to each
-    // part's centre: a smooth merger of several fields.
-    std::vector<std::vector<float>> parts;
-    for (const OrientationField& p : field.parts)
-        parts.push_back(orientationAngles(p, width, height, baseDir));
+    // part's centre: a smooth merger of several fields. Parts are added one
+    // at a time (in order, so the sums are the same), holding one part's
+    // angles at a time rather than all of them.
+    std::vector<double> cx(angles.size(), 0.0), cy(angles.size(), 0.0);
     const double soften = 0.01 * double(width) * width;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            double cx = 0, cy = 0;
-            for (std::size_t k = 0; k < parts.size(); ++k) {
-                const double dx = x + 0.5 - field.parts[k].centreX * width;
-                const double dy = y + 0.5 - field.parts[k].centreY * height;
+    for (const OrientationField& part : field.parts) {
+        const std::vector<float> partAngles = orientationAngles(part, width, height, baseDir);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const std::size_t i = std::size_t(y) * width + x;
+                const double dx = x + 0.5 - part.centreX * width;
+                const double dy = y + 0.5 - part.centreY * height;
                 const double weight = 1.0 / (dx * dx + dy * dy + soften);
-                const double a = 2.0 * parts[k][std::size_t(y) * width + x];
-                cx += weight * std::cos(a);
-                cy += weight * std::sin(a);
+                const double a = 2.0 * partAngles[i];
+                cx[i] += weight * std::cos(a);
+                cy[i] += weight * std::sin(a);
             }
-            angles[std::size_t(y) * width + x] = float(0.5 * std::atan2(cy, cx));
-        }
+    }
+    for (std::size_t i = 0; i < angles.size(); ++i)
+        angles[i] = float(0.5 * std::atan2(cy[i], cx[i]));
     return angles;
 }
 

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/json_fields.hpp"
+#include "core/base/limits.hpp"
 #include "core/models/reaction_model.hpp"
 
 namespace morphogen {
@@ -54,13 +55,17 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
                                   "{\"steps\": N, \"model\": \"...\", \"init\": {...}, "
                                   "\"dt\": x, \"params\": {...}, \"freeze\": {...}, "
                                   "\"reset\": {...}}");
+    if (j.size() > std::size_t(kMaxStages))
+        throw InputError(source + ": field 'stages' has " + std::to_string(j.size()) +
+                         " stages; accepted are 1 to " + std::to_string(kMaxStages));
     std::vector<Stage> stages;
     const ReactionModel* model = &sessionModel; // the model the stage runs
+    bool frozen = false;                        // a stage up to this one has a freeze rule
     for (std::size_t i = 0; i < j.size(); ++i) {
         FieldReader reader(j[i], source, "stages[" + std::to_string(i) + "]");
         reader.rejectUnknown({"steps", "model", "init", "dt", "params", "freeze", "reset"});
         Stage stage;
-        stage.steps = int(reader.integer("steps", 0, 0, 100000000));
+        stage.steps = int(reader.integer("steps", 0, 0, kMaxSteps));
         const ReactionModel* previous = model; // the model of the state the freeze rule reads
         if (reader.find("model")) {
             stage.model = reader.string("model", "");
@@ -82,7 +87,7 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
             stage.init = initialConditionFromJson(*init, source, reader.path("init"), *model);
         }
         if (reader.find("dt"))
-            stage.dt = float(reader.number("dt", 1.0, 1e-6, 100.0));
+            stage.dt = float(reader.number("dt", 1.0, kMinDt, kMaxDt));
         if (const json* params = reader.find("params")) {
             FieldReader p(*params, source, reader.path("params"));
             for (auto it = params->begin(); it != params->end(); ++it) {
@@ -115,7 +120,13 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
                 f.failField("min", "is above max");
             stage.freeze = rule;
         }
+        frozen = frozen || stage.freeze.has_value();
         if (const json* reset = reader.find("reset")) {
+            // Reset writes the frozen cells only: without a freeze rule up to
+            // here there are none, and the stage would silently do nothing.
+            if (!frozen)
+                reader.failField("reset", "needs frozen cells: add a \"freeze\" rule to this "
+                                          "stage or an earlier one");
             FieldReader r(*reset, source, reader.path("reset"));
             for (auto it = reset->begin(); it != reset->end(); ++it) {
                 if (model->chemicalIndex(it.key()) < 0)

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/errors.hpp"
+#include "core/base/json_input.hpp"
 
 namespace morphogen {
 
@@ -106,21 +107,11 @@ std::vector<Rgb> parseGradient(const std::string& list, const std::string& what)
 }
 
 std::vector<Rgb> loadPaletteFile(const std::string& path) {
-    std::ifstream in(path);
-    if (!in)
-        throw InputError(path + ": cannot open palette file (does it exist and is it readable?)");
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    const std::string text = buffer.str();
+    const std::string text = readInputFile(path, "palette file");
     const std::string head = trim(text);
     std::vector<Rgb> stops;
     if (!head.empty() && (head[0] == '[' || head[0] == '{')) {
-        nlohmann::json j;
-        try {
-            j = nlohmann::json::parse(text);
-        } catch (const nlohmann::json::parse_error& e) {
-            throw InputError(path + ": palette is not valid JSON: " + e.what());
-        }
+        nlohmann::json j = parseJsonText(text, path + " (palette)");
         if (j.is_object()) {
             if (j.size() != 1 || !j.contains("colours"))
                 throw InputError(path + ": a JSON palette object has one key, \"colours\"");

@@ -13,6 +13,7 @@
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/json_fields.hpp"
+#include "core/base/json_input.hpp"
 #include "core/domain/atlas.hpp"
 #include "core/io/output_files.hpp"
 #include "core/session/gradient.hpp"
@@ -176,21 +177,45 @@ std::vector<ScheduleLevel> scheduleFromJson(const FieldReader& top, const json& 
     if (!schedule.is_array() || schedule.empty())
         top.failField("schedule", "must be a non-empty array of {\"size\": N or [W, H], "
                                   "\"steps\": N}, coarsest first");
+    if (schedule.size() > std::size_t(kMaxScheduleLevels))
+        top.failField("schedule", "has " + std::to_string(schedule.size()) +
+                                      " levels; accepted are 1 to " +
+                                      std::to_string(kMaxScheduleLevels));
     std::vector<ScheduleLevel> levels;
+    long long total = 0;
     for (std::size_t i = 0; i < schedule.size(); ++i) {
         FieldReader level(schedule[i], top.source(), "schedule[" + std::to_string(i) + "]");
         level.rejectUnknown({"size", "steps"});
         ScheduleLevel l;
         const json* size = level.find("size");
-        if (size && size->is_array() && size->size() == 2) {
+        if (!size)
+            level.failField("size", "is missing: every level needs its \"size\": N or [W, H]");
+        if (!level.find("steps"))
+            level.failField("steps", "is missing: every level needs its \"steps\": N");
+        if (size->is_array()) {
+            if (size->size() != 2 || !(*size)[0].is_number_integer() ||
+                !(*size)[1].is_number_integer())
+                level.failField("size", "must be an integer N or an array [W, H] of integers");
             l.width = int(level.numberValue((*size)[0], "size[0]", 1, kMaxGridSide));
             l.height = int(level.numberValue((*size)[1], "size[1]", 1, kMaxGridSide));
         } else {
             l.width = l.height = int(level.integer("size", 0, 1, kMaxGridSide));
         }
-        l.steps = int(level.integer("steps", 0, 0, 100000000));
+        l.steps = int(level.integer("steps", 0, 0, kMaxSteps));
+        total += l.steps;
+        if (i > 0 && (l.width < levels.back().width || l.height < levels.back().height))
+            level.failField("size", "is " + std::to_string(l.width) + " x " +
+                                        std::to_string(l.height) + ", smaller than level " +
+                                        std::to_string(i - 1) + "'s " +
+                                        std::to_string(levels.back().width) + " x " +
+                                        std::to_string(levels.back().height) +
+                                        ": levels go from coarse to fine");
         levels.push_back(l);
     }
+    if (total > kMaxSteps)
+        top.failField("schedule", "levels add up to " + std::to_string(total) +
+                                      " steps in all; accepted are up to " +
+                                      std::to_string(kMaxSteps));
     return levels;
 }
 
@@ -200,12 +225,17 @@ void readStages(const FieldReader& top, const json& stages, const ReactionModel&
     if (!s.schedule.empty())
         top.failField("stages", "cannot be combined with a coarse-to-fine schedule");
     s.stages = stagesFromJson(stages, top.source(), model);
-    s.steps = 0;
+    long long total = 0;
     bool changesModel = false;
     for (const Stage& stage : s.stages) {
-        s.steps += stage.steps;
+        total += stage.steps;
         changesModel = changesModel || !stage.model.empty();
     }
+    if (total > kMaxSteps)
+        top.failField("stages", "add up to " + std::to_string(total) +
+                                    " steps in all; accepted are up to " +
+                                    std::to_string(kMaxSteps));
+    s.steps = int(total);
     // Anisotropic and generalized diffusion name the session model's chemicals.
     if (changesModel && s.diffusion.type != DiffusionType::Isotropic)
         top.failField("stages", "change the model, which needs isotropic diffusion (field "
@@ -305,7 +335,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
     s.model = model->name();
     s.params = paramsFromJson(top, *model);
     readSize(top, s);
-    s.length = top.number("length", 0.0, 1e-3, 1e7);
+    s.length = top.number("length", 0.0, kMinLength, kMaxLength);
     s.coarseToFine = top.boolean("coarse_to_fine", s.coarseToFine);
     s.edges = top.choice("edges", s.edges, parseEdgeMode, edgeModeNames());
 
@@ -316,12 +346,14 @@ Session sessionFromJson(const json& root, const std::string& source) {
 
     s.integrator = top.choice("integrator", s.integrator, parseIntegrator, integratorNames());
     // "jacobi_sweeps" is the name sessions written before the rename use.
-    s.relaxationPasses = int(top.integer("jacobi_sweeps", s.relaxationPasses, 1, 1000));
-    s.relaxationPasses = int(top.integer("relaxation_passes", s.relaxationPasses, 1, 1000));
+    s.relaxationPasses =
+        int(top.integer("jacobi_sweeps", s.relaxationPasses, 1, kMaxRelaxationPasses));
+    s.relaxationPasses =
+        int(top.integer("relaxation_passes", s.relaxationPasses, 1, kMaxRelaxationPasses));
 
-    s.dt = float(top.number("dt", model->defaultDt(), 1e-6, 100.0));
-    s.steps = int(top.integer("steps", s.steps, 0, 100000000));
-    s.seed = std::uint64_t(top.integer("seed", 1, 0, (1LL << 53)));
+    s.dt = float(top.number("dt", model->defaultDt(), kMinDt, kMaxDt));
+    s.steps = int(top.integer("steps", s.steps, 0, kMaxSteps));
+    s.seed = std::uint64_t(top.integer("seed", 1, 0, kMaxSeed));
 
     if (const json* schedule = top.find("schedule"))
         applySchedule(s, scheduleFromJson(top, *schedule));
@@ -400,15 +432,7 @@ json sessionToJson(const Session& s) {
 }
 
 Session loadSessionFile(const std::string& path) {
-    std::ifstream in(path);
-    if (!in)
-        throw InputError(path + ": cannot open session file (does it exist and is it readable?)");
-    json j;
-    try {
-        j = json::parse(in);
-    } catch (const json::parse_error& e) {
-        throw InputError(path + ": not valid JSON: " + e.what());
-    }
+    const json j = parseJsonText(readInputFile(path, "session file"), path);
     Session s = sessionFromJson(j, path);
     s.baseDir = std::filesystem::path(path).parent_path().string();
     validateSession(s, path);
@@ -423,12 +447,7 @@ std::vector<Session> allPresets() {
     std::vector<Session> presets;
     for (std::string_view path : embeddedFiles("models/presets/")) {
         const std::string source(path);
-        json j;
-        try {
-            j = json::parse(*embeddedFile(path));
-        } catch (const json::parse_error& e) {
-            throw InputError(source + ": not valid JSON: " + e.what());
-        }
+        const json j = parseJsonText(*embeddedFile(path), source);
         Session s = sessionFromJson(j, source);
         if (s.name.empty())
             s.name = std::filesystem::path(source).stem().string();
@@ -476,12 +495,16 @@ void applyParamOverride(Session& session, const std::string& assignment) {
 
 void applySchedule(Session& session, std::vector<ScheduleLevel> levels) {
     assert(!levels.empty());
+    long long total = 0;
+    for (const ScheduleLevel& l : levels)
+        total += l.steps;
+    if (total > kMaxSteps)
+        throw InputError("the schedule's levels have " + std::to_string(total) +
+                         " steps in all; accepted are up to " + std::to_string(kMaxSteps));
     session.schedule = std::move(levels);
     session.width = session.schedule.back().width;
     session.height = session.schedule.back().height;
-    session.steps = 0;
-    for (const ScheduleLevel& l : session.schedule)
-        session.steps += l.steps;
+    session.steps = int(total);
 }
 
 void applySteps(Session& session, int steps, const std::string& flag) {
@@ -494,6 +517,125 @@ void applySteps(Session& session, int steps, const std::string& flag) {
                                 "\"schedule\": edit its levels or use --schedule");
     session.steps = steps;
 }
+
+namespace {
+
+std::string numberText(double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+}
+
+// The checks of cascade stages against their models and each other, in one
+// pass (a stage's model is the last one set up to it).
+void validateStages(const Session& s, const ReactionModel& sessionModel,
+                    const std::string& source) {
+    if (s.stages.size() > std::size_t(kMaxStages))
+        throw InputError(source + ": " + std::to_string(s.stages.size()) +
+                         " cascade stages; accepted are up to " + std::to_string(kMaxStages));
+    const ReactionModel* m = &sessionModel;
+    bool frozen = false;
+    long long total = 0;
+    for (std::size_t i = 0; i < s.stages.size(); ++i) {
+        const Stage& stage = s.stages[i];
+        const std::string where = source + ": stages[" + std::to_string(i) + "]";
+        if (!stage.model.empty()) {
+            m = findModel(stage.model);
+            if (!m)
+                throw InputError(where + ".model '" + stage.model + "' is not a known model");
+        }
+        for (const auto& [name, value] : stage.params) {
+            const ParamSpec* p = m->param(name);
+            if (!p)
+                throw InputError(where + ".params." + name + " is not a parameter of model '" +
+                                 m->name() + "'" +
+                                 didYouMean(name, splitNameList(m->paramNames())));
+            if (!std::isfinite(value) || value < p->min || value > p->max) {
+                std::ostringstream os;
+                os << where << ".params." << name << " = " << value << " is outside [" << p->min
+                   << ", " << p->max << "]";
+                throw InputError(os.str());
+            }
+        }
+        if (stage.steps < 0 || stage.steps > kMaxSteps)
+            throw InputError(where + ".steps is " + std::to_string(stage.steps) +
+                             ", accepted range is [0, " + std::to_string(kMaxSteps) + "]");
+        if (stage.dt && !(*stage.dt >= float(kMinDt) && *stage.dt <= float(kMaxDt)))
+            throw InputError(where + ".dt is " + numberText(*stage.dt) + ", accepted range is [" +
+                             numberText(kMinDt) + ", " + numberText(kMaxDt) + "]");
+        frozen = frozen || stage.freeze.has_value();
+        if (!stage.reset.empty() && !frozen)
+            throw InputError(where + ".reset: no stage up to this one has a \"freeze\" rule, "
+                                     "so no cells are frozen to reset: add \"freeze\" to this "
+                                     "stage or an earlier one");
+        total += stage.steps;
+    }
+    if (!s.stages.empty() && total > kMaxSteps)
+        throw InputError(source + ": the stages have " + std::to_string(total) +
+                         " steps in all; accepted are up to " + std::to_string(kMaxSteps));
+}
+
+void validateSchedule(const Session& s, const std::string& source) {
+    if (s.schedule.empty())
+        return;
+    if (s.schedule.size() > std::size_t(kMaxScheduleLevels))
+        throw InputError(source + ": the schedule has " + std::to_string(s.schedule.size()) +
+                         " levels; accepted are 1 to " + std::to_string(kMaxScheduleLevels));
+    long long total = 0;
+    for (std::size_t i = 0; i < s.schedule.size(); ++i) {
+        const ScheduleLevel& l = s.schedule[i];
+        const std::string where = source + ": schedule level " + std::to_string(i);
+        if (l.width < 1 || l.height < 1 || l.width > kMaxGridSide || l.height > kMaxGridSide)
+            throw InputError(where + " is " + std::to_string(l.width) + " x " +
+                             std::to_string(l.height) + "; accepted are sides of 1.." +
+                             std::to_string(kMaxGridSide));
+        if (l.steps < 0 || l.steps > kMaxSteps)
+            throw InputError(where + " has " + std::to_string(l.steps) +
+                             " steps; accepted are 0.." + std::to_string(kMaxSteps));
+        if (i > 0 && (l.width < s.schedule[i - 1].width || l.height < s.schedule[i - 1].height))
+            throw InputError(where + " (" + std::to_string(l.width) + " x " +
+                             std::to_string(l.height) +
+                             ") is smaller than the level before it: "
+                             "levels go from coarse to fine");
+        total += l.steps;
+    }
+    if (total > kMaxSteps)
+        throw InputError(source + ": the schedule's levels have " + std::to_string(total) +
+                         " steps in all; accepted are up to " + std::to_string(kMaxSteps));
+    const ScheduleLevel& last = s.schedule.back();
+    if (last.width != s.width || last.height != s.height)
+        throw InputError(source + ": the schedule's last level is " + std::to_string(last.width) +
+                         " x " + std::to_string(last.height) + ", not the session's size " +
+                         std::to_string(s.width) + " x " + std::to_string(s.height));
+    if (!s.paramMaps.empty())
+        throw InputError(source + ": a coarse-to-fine schedule does not combine with "
+                                  "\"param_maps\"");
+}
+
+void validateTiles(const Session& s, const std::string& source) {
+    if (!s.tiles.active())
+        return;
+    const TileGrid& t = s.tiles;
+    // 64-bit: the products must not wrap before they are compared.
+    const bool whole = t.columns >= 1 && t.rows >= 1 && t.columns <= kMaxTilesPerSide &&
+                       t.rows <= kMaxTilesPerSide && s.width % t.columns == 0 &&
+                       s.height % t.rows == 0 &&
+                       static_cast<long long>(t.columns) * kMinTileCells <= s.width &&
+                       static_cast<long long>(t.rows) * kMinTileCells <= s.height;
+    if (!whole || s.edges != EdgeMode::Periodic)
+        throw InputError(
+            source + ": tiles grid [" + std::to_string(t.columns) + ", " + std::to_string(t.rows) +
+            "] must split the " + std::to_string(s.width) + " x " + std::to_string(s.height) +
+            " grid evenly into periodic tiles of at least " + std::to_string(kMinTileCells) +
+            " x " + std::to_string(kMinTileCells) + " cells");
+    if (!s.schedule.empty())
+        throw InputError(source + ": \"tiles\" do not combine with a coarse-to-fine schedule");
+    if (!s.paramMaps.empty())
+        throw InputError(source + ": \"tiles\" do not combine with \"param_maps\" (tiles.params "
+                                  "sets per-tile values)");
+}
+
+} // namespace
 
 void validateSession(const Session& s, const std::string& source) {
     const ReactionModel* model = findModel(s.model);
@@ -511,41 +653,60 @@ void validateSession(const Session& s, const std::string& source) {
             throw InputError(os.str());
         }
     }
-    for (std::size_t i = 0; i < s.stages.size(); ++i) {
-        const ReactionModel& m = stageModel(s.stages, i, *model);
-        for (const auto& [name, value] : s.stages[i].params) {
-            const ParamSpec* p = m.param(name);
-            if (!p)
-                throw InputError(source + ": stages[" + std::to_string(i) + "].params." + name +
-                                 " is not a parameter of model '" + m.name() + "'" +
-                                 didYouMean(name, splitNameList(m.paramNames())));
-            if (!std::isfinite(value) || value < p->min || value > p->max) {
-                std::ostringstream os;
-                os << source << ": stages[" << i << "].params." << name << " = " << value
-                   << " is outside [" << p->min << ", " << p->max << "]";
-                throw InputError(os.str());
-            }
-        }
-    }
+    validateStages(s, *model, source);
     if (s.width < 1 || s.height < 1 || s.width > kMaxGridSide || s.height > kMaxGridSide)
         throw InputError(source + ": size " + std::to_string(s.width) + "x" +
                          std::to_string(s.height) + " is outside 1.." +
                          std::to_string(kMaxGridSide) + " per side");
-    if (!(s.dt > 0.0f) || !std::isfinite(s.dt))
-        throw InputError(source + ": dt must be a positive number");
-    if (s.steps < 0)
-        throw InputError(source + ": steps must be >= 0");
+    if (s.length != 0 && !(s.length >= kMinLength && s.length <= kMaxLength))
+        throw InputError(source + ": the image is " + numberText(s.length) +
+                         " model units wide (length, divided by --scale); accepted are " +
+                         numberText(kMinLength) + " to " + numberText(kMaxLength));
+    if (!(s.dt >= float(kMinDt) && s.dt <= float(kMaxDt)))
+        throw InputError(source + ": dt is " + numberText(s.dt) + ", accepted range is [" +
+                         numberText(kMinDt) + ", " + numberText(kMaxDt) + "]");
+    if (s.steps < 0 || s.steps > kMaxSteps)
+        throw InputError(source + ": steps is " + std::to_string(s.steps) +
+                         ", accepted range is [0, " + std::to_string(kMaxSteps) + "]");
+    if (s.seed > std::uint64_t(kMaxSeed))
+        throw InputError(source + ": seed is " + std::to_string(s.seed) +
+                         ", accepted range is [0, " + std::to_string(kMaxSeed) + "]");
+    if (s.relaxationPasses < 1 || s.relaxationPasses > kMaxRelaxationPasses)
+        throw InputError(source + ": relaxation passes is " + std::to_string(s.relaxationPasses) +
+                         ", accepted range is [1, " + std::to_string(kMaxRelaxationPasses) + "]");
     if (!s.schedule.empty() && !s.stages.empty())
         throw InputError(source + ": a coarse-to-fine \"schedule\" does not combine with "
                                   "cascade \"stages\": give one of them");
+    validateSchedule(s, source);
     // A size override must keep a batched sweep's tiles whole.
-    if (s.tiles.active() && (s.width % s.tiles.columns != 0 || s.height % s.tiles.rows != 0 ||
-                             s.width / s.tiles.columns < 4 || s.height / s.tiles.rows < 4 ||
-                             s.edges != EdgeMode::Periodic))
-        throw InputError(source + ": tiles grid [" + std::to_string(s.tiles.columns) + ", " +
-                         std::to_string(s.tiles.rows) + "] must split the " +
-                         std::to_string(s.width) + " x " + std::to_string(s.height) +
-                         " grid evenly into periodic tiles of at least 4 x 4 cells");
+    validateTiles(s, source);
+}
+
+namespace {
+
+void orientationImages(const OrientationField& field, std::vector<std::string>& images) {
+    if (field.type == OrientationField::Type::ImageGradient)
+        images.push_back(field.image);
+    for (const OrientationField& part : field.parts)
+        orientationImages(part, images);
+}
+
+} // namespace
+
+std::vector<std::string> sessionImages(const Session& s) {
+    std::vector<std::string> images;
+    for (const auto& [name, map] : s.paramMaps)
+        if (map.field == ParamMapSpec::Field::Image)
+            images.push_back(map.image);
+    if (s.diffusion.map) {
+        orientationImages(s.diffusion.map->orientation, images);
+        if (!s.diffusion.map->scaleImage.empty())
+            images.push_back(s.diffusion.map->scaleImage);
+    }
+    for (std::string& image : images)
+        if (!s.baseDir.empty() && !std::filesystem::path(image).is_absolute())
+            image = (std::filesystem::path(s.baseDir) / image).string();
+    return images;
 }
 
 } // namespace morphogen

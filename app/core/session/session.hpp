@@ -10,6 +10,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "core/base/limits.hpp" // kMaxGridSide and the other limits
 #include "core/domain/domain.hpp"
 #include "core/models/diffusion_spec.hpp"
 #include "core/models/initial_condition.hpp"
@@ -127,9 +128,6 @@ void resizeSession(Session& session, int width, int height);
 // Runs the session on `atlas`: its size becomes the atlas texture's.
 void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas);
 
-// Largest accepted grid side; the GPU may allow less (checked at allocation).
-constexpr int kMaxGridSide = 16384;
-
 // Parses a session; `source` names the file (or preset) in error messages.
 // Unknown fields, wrong types and out-of-range values throw InputError.
 Session sessionFromJson(const nlohmann::json& json, const std::string& source);
@@ -158,5 +156,9 @@ void applySteps(Session& session, int steps, const std::string& flag);
 
 // Checks params against the model's ranges and the grid against limits.
 void validateSession(const Session& session, const std::string& source);
+
+// The image files a run of the session reads (parameter maps, orientation
+// and scale images), resolved against its baseDir as the run resolves them.
+std::vector<std::string> sessionImages(const Session& session);
 
 } // namespace morphogen

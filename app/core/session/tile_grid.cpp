@@ -3,18 +3,12 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/json_fields.hpp"
+#include "core/base/limits.hpp"
 #include "core/models/reaction_model.hpp"
 
 namespace morphogen {
 
 using nlohmann::json;
-
-namespace {
-
-// The largest tile count a session may ask for (a 16384^2 grid of 4^2 tiles).
-constexpr double kMaxTilesPerSide = 4096;
-
-} // namespace
 
 TileGrid tileGridFromJson(const json& j, const std::string& source, const ReactionModel& model) {
     FieldReader reader(j, source, "tiles");

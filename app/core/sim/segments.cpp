@@ -132,6 +132,15 @@ std::vector<Segment> segmentsOf(const Session& session) {
         segment.refine = true;
         segments.push_back(segment);
     }
+    long long total = 0;
+    for (const Segment& segment : segments)
+        total += segment.session.steps;
+    if (total > INT_MAX)
+        throw InputError("at " + std::to_string(session.width) + " x " +
+                         std::to_string(session.height) + " the session's segments take " +
+                         std::to_string(total) +
+                         " steps in all, more than the engine runs in one go: use fewer steps "
+                         "or a smaller size");
     return segments;
 }
 

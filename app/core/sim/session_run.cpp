@@ -19,6 +19,8 @@ namespace morphogen {
 SessionRun::SessionRun(const Session& session, SimulatorFactory makeSimulator, int checkEvery)
     : m_session(session), m_make(std::move(makeSimulator)), m_checkEvery(std::max(0, checkEvery)),
       m_segments(segmentsOf(session)), m_stateModel(&session.reactionModel()) {
+    for (const Segment& s : m_segments)
+        m_totalSteps += s.session.steps; // segmentsOf keeps the total within an int
     enterSegment(0);
 }
 
@@ -154,8 +156,7 @@ RunPosition SessionRun::position() const {
     p.segmentStep = m_stepsRun[m_index];
     p.segmentSteps = m_segments[m_index].session.steps;
     p.stepsDone = m_stepsDone;
-    for (const Segment& s : m_segments)
-        p.totalSteps += s.session.steps;
+    p.totalSteps = m_totalSteps;
     p.stages = !m_session.stages.empty();
     p.finished = m_finished;
     return p;

@@ -112,6 +112,7 @@ private:
     std::size_t m_index = 0;
     std::vector<int> m_stepsRun; // per segment entered
     int m_stepsDone = 0;
+    int m_totalSteps = 0; // over all segments: position() is asked after every chunk
     bool m_finished = false;
     std::unique_ptr<Simulator> m_simulator; // null once finished
     // The state between segments and at the end; empty inside a segment,

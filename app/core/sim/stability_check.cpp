@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/base/limits.hpp"
 #include "core/operators/stability.hpp"
 #include "core/sim/runner.hpp"
 #include "core/sim/segments.hpp"
@@ -47,6 +48,15 @@ float checkExplicitStep(const Segment& segment, const std::string& what, bool ve
                              : std::string();
     if (part.dt > *st.maxStableDt) {
         const float capped = float(0.9 * limit);
+        // A session of a smaller dt could not be read back (nor run in useful time).
+        if (!(capped >= float(kMinDt))) {
+            report.refused = format(
+                "%sthe explicit stability limit is dt %.3g%s (%s), below the smallest accepted dt "
+                "%g: the diffusion is too fast for explicit steps; lower its rates or tensor "
+                "components, or use --integrator semi_implicit",
+                what.c_str(), limit, steps.c_str(), st.basis.c_str(), kMinDt);
+            return segment.sessionDt;
+        }
         report.notes.push_back(
             {true,
              format("%sdt %g exceeds the explicit stability limit %.4g%s (%s); capped to %.4g",

@@ -29,7 +29,10 @@ State runFrom(Simulator& simulator, const State& start, int steps, const RunOpti
 } // namespace
 
 float sweepValue(const SweepAxis& axis, int i, int n) {
-    return n > 1 ? axis.min + (axis.max - axis.min) * (float(i) / float(n - 1)) : axis.min;
+    const float v = n > 1 ? axis.min + (axis.max - axis.min) * (float(i) / float(n - 1)) : axis.min;
+    // Rounding may pass max by an ulp: the written session must stay within
+    // the parameter's range to read back.
+    return std::clamp(v, std::min(axis.min, axis.max), std::max(axis.min, axis.max));
 }
 
 Session batchedSession(const SweepSpec& spec) {
