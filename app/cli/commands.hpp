@@ -15,5 +15,7 @@ void addGalleryCommand(CLI::App& app);
 void addMapCommand(CLI::App& app);
 void addSweepCommand(CLI::App& app);
 void addColourCommand(CLI::App& app);
+// mesh-info, and the hidden mesh-gen that writes the sample meshes.
+void addMeshCommands(CLI::App& app);
 
 } // namespace morphogen::cli

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
     morphogen::cli::addMapCommand(app);
     morphogen::cli::addSweepCommand(app);
     morphogen::cli::addColourCommand(app);
+    morphogen::cli::addMeshCommands(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,20 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "core/mesh/mesh_io.hpp"
+
+// The format readers behind readMeshFile. Each checks what its library lets
+// through (index ranges, buffer bounds, coordinates it parses as zero) and
+// throws InputError naming `path`; readMeshFile checks what is common.
+namespace morphogen::mesh_formats {
+
+// Largest vertex or triangle count read (2^26, about 67 million): far past
+// any model surface tiles need, and below what 32-bit indices and memory allow.
+constexpr std::size_t kMaxMeshElements = std::size_t(1) << 26;
+
+TriangleMesh readObj(const std::string& path, const std::string& text, MeshFileInfo& info);
+TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info);
+
+} // namespace morphogen::mesh_formats

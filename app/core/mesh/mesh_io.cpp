@@ -1,0 +1,147 @@
+#include "core/mesh/mesh_io.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/base/errors.hpp"
+#include "core/mesh/mesh_formats.hpp"
+
+namespace morphogen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kAccepted = "accepted: .obj, .gltf, .glb";
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+std::string readWholeFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw InputError(path + ": cannot be read: " + std::strerror(errno));
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad())
+        throw InputError(path + ": reading failed: " + std::strerror(errno));
+    return text.str();
+}
+
+std::string point(const Eigen::Vector3f& p) {
+    char text[96];
+    std::snprintf(text, sizeof text, "(%g, %g, %g)", p.x(), p.y(), p.z());
+    return text;
+}
+
+} // namespace
+
+TriangleMesh readMeshFile(const std::string& path, MeshFileInfo* infoOut) {
+    MeshFileInfo info;
+    info.path = path;
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status))
+        throw InputError(path + ": no such mesh file");
+    if (fs::is_directory(status))
+        throw InputError(path + ": is a folder, not a mesh file (" + kAccepted + ")");
+    if (!fs::is_regular_file(status))
+        throw InputError(path + ": is not a regular file (" + kAccepted + ")");
+    const std::string ext = lowerExtension(path);
+    if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
+        throw InputError(path + ": unsupported mesh format '" + ext + "' (" + kAccepted + ")");
+    if (fs::file_size(path, ec) == 0 && !ec)
+        throw InputError(path + ": the file is empty");
+
+    TriangleMesh mesh = ext == ".obj" ? mesh_formats::readObj(path, readWholeFile(path), info)
+                                      : mesh_formats::readGltf(path, ext == ".glb", info);
+
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+        for (std::uint32_t v : mesh.triangles[t])
+            if (v >= mesh.positions.size()) // the readers refuse these first, with more context
+                throw InputError(path + ": triangle " + std::to_string(t + 1) +
+                                 " refers to vertex " + std::to_string(v + 1) + " of " +
+                                 std::to_string(mesh.positions.size()));
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+        if (!mesh.positions[i].allFinite())
+            throw InputError(path + ": vertex " + std::to_string(i + 1) + " is " +
+                             point(mesh.positions[i]) +
+                             ": coordinates must be finite numbers (no NaN or infinity)");
+    if (mesh.triangles.empty()) {
+        std::string what = std::to_string(info.vertices) + " vertices and no faces";
+        if (info.skippedParts > 0)
+            what += "; only points or lines";
+        throw InputError(path + ": has no triangles (" + what + "), nothing to grow a pattern on");
+    }
+    if (infoOut)
+        *infoOut = std::move(info);
+    return mesh;
+}
+
+LoadedMesh loadMesh(const std::string& path) {
+    LoadedMesh loaded;
+    loaded.mesh = readMeshFile(path, &loaded.file);
+    loaded.weld = weldVertices(loaded.mesh);
+    if (loaded.mesh.triangles.empty())
+        throw InputError(path + ": all " + std::to_string(loaded.file.triangles) +
+                         " triangles collapse to a line or point once equal vertices are "
+                         "merged, nothing to grow a pattern on");
+    loaded.reoriented = orientConsistently(loaded.mesh);
+    return loaded;
+}
+
+void writeObj(const TriangleMesh& mesh, const std::string& path,
+              const std::vector<std::string>& comment) {
+    std::string text;
+    text.reserve(mesh.positions.size() * 32 + mesh.triangles.size() * 24);
+    for (const std::string& line : comment)
+        text += "# " + line + "\n";
+    char buffer[128];
+    for (const Eigen::Vector3f& p : mesh.positions) {
+        // Six decimals: sub-micrometre on a model a few units across, and short lines.
+        const int n =
+            std::snprintf(buffer, sizeof buffer, "v %.6f %.6f %.6f\n", p.x(), p.y(), p.z());
+        text.append(buffer, std::size_t(n));
+    }
+    for (const auto& t : mesh.triangles) {
+        const int n =
+            std::snprintf(buffer, sizeof buffer, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1);
+        text.append(buffer, std::size_t(n));
+    }
+    writeFileAtomically(path, text);
+}
+
+void writeFileAtomically(const std::string& path, const std::string& bytes) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        if (!out)
+            throw InputError(path + ": cannot be written (does the folder exist and is it "
+                                    "writable?)");
+        out.write(bytes.data(), std::streamsize(bytes.size()));
+        if (!out) {
+            out.close();
+            fs::remove(tmp);
+            throw InputError(path + ": writing failed");
+        }
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        const std::string why = ec.message();
+        fs::remove(tmp, ec);
+        throw InputError(path + ": cannot move the file into place: " + why);
+    }
+}
+
+} // namespace morphogen
