@@ -13,7 +13,9 @@
 #include "cli/progress.hpp"
 #include "cli/render_frames.hpp"
 #include "cli/render_output.hpp"
+#include "cli/render_surface.hpp"
 #include "cli/settle_flags.hpp"
+#include "cli/surface_flags.hpp"
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
@@ -24,6 +26,7 @@
 #include "core/session/session.hpp"
 #include "core/sim/runner.hpp"
 #include "core/sim/segments.hpp"
+#include "core/surface/surface_setup.hpp"
 #include "gl/backend.hpp"
 
 namespace morphogen::cli {
@@ -61,6 +64,7 @@ struct RenderFlags {
     TextureSetFlags textureSet;
     FrameFlags frames;
     SettleFlags settle;
+    SurfaceFlags surface;
 };
 
 // An enumeration's name given to `flag`; throws InputError listing `accepted`.
@@ -141,6 +145,17 @@ Session buildSession(const RenderFlags& f) {
                      "morphogen: %s has no \"length\": read as written for its own size, %d "
                      "units wide (one per cell); other sizes keep that pattern\n",
                      f.sessionFile.c_str(), s.width);
+    }
+    applySurfaceFlags(f.surface, s);
+    if (s.surface.active()) {
+        // The tiles set the resolution (--tile-size, --tiles); --scale still sets the pattern's.
+        if (!f.size.empty() || !f.schedule.empty())
+            throw InputError(std::string(f.size.empty() ? "--schedule" : "--size") +
+                             " does not apply on a mesh: the tiles set the resolution (use "
+                             "--tile-size and --tiles; --scale sets the pattern's scale)");
+        if (!s.schedule.empty() || s.tiles.active())
+            throw InputError("a session on a mesh (\"surface\") cannot also have a " +
+                             std::string(s.tiles.active() ? "\"tiles\" sweep" : "\"schedule\""));
     }
     if (!f.schedule.empty()) {
         if (!f.size.empty() || !f.steps.empty())
@@ -245,8 +260,16 @@ void render(const RenderFlags& flags) {
         throw InputError("render needs --out FILE or --texture-set DIR (or both)");
     applyTextureSetFlags(f.textureSet, session);
     const bool image = !f.out.empty(); // without --out, only the texture set is written
-    if (image)
+    const bool surface = session.surface.active();
+    if (surface) {
+        if (!f.textureSet.dir.empty() || f.frames.wanted())
+            throw InputError(std::string(f.frames.wanted() ? "--frames" : "--texture-set") +
+                             " is for flat renders; on a mesh --out takes a screenshot (.png) or "
+                             "the textured model (.glb)");
+        checkSurfaceOutput(f.out);
+    } else if (image) {
         imageFormatForPath(f.out); // an unsupported extension is bad input, found before the run
+    }
     if (f.bitDepth != 8 && f.bitDepth != 16)
         throw InputError("--bit-depth " + std::to_string(f.bitDepth) +
                          " is not supported (accepted: 8, 16)");
@@ -263,12 +286,21 @@ void render(const RenderFlags& flags) {
     if (f.frames.wanted())
         prepareFrames(f.frames, f.out, session);
 
+    std::optional<SurfaceSetup> surfaceSetup;
+    if (surface) {
+        Progress tiling("mesh to tiles", 100);
+        surfaceSetup = setUpSurface(session, [&](const std::string&, double fraction) {
+            tiling.update(int(fraction * 100));
+        });
+        tiling.finish("done");
+        std::fprintf(stderr, "morphogen: %s\n", surfaceSetup->describe().c_str());
+    }
     SettleRun settle(f.settle, session, f.sessionFile.empty(), !f.steps.empty());
     checkStability(session);
     const std::string plan = describePlan(session);
     if (!plan.empty())
         std::fprintf(stderr, "morphogen: %s\n", plan.c_str());
-    if (session.cellSize() > 2.0)
+    if (!surface && session.cellSize() > 2.0)
         std::fprintf(stderr,
                      "morphogen: warning: a cell is %.3g units wide: features designed a few "
                      "units across are under-resolved; use a larger --size\n",
@@ -319,6 +351,20 @@ void render(const RenderFlags& flags) {
     warnIfFlat(result);
 
     OutputFiles files;
+    if (surface) {
+        std::fprintf(stderr, "morphogen: %s\n",
+                     describeSurfaceResult(result, *surfaceSetup).c_str());
+        const std::vector<std::string> written =
+            writeSurfaceOutput(result, *surfaceSetup, f.out, sessionOut, backend.context.get(),
+                               gl::parseContextFlag(f.context), files);
+        files.commit();
+        for (const std::string& path : written)
+            std::printf("%s\n", path.c_str());
+        if (cancelled)
+            throw std::runtime_error("interrupted; wrote the state after " +
+                                     std::to_string(result.stepsDone) + " steps");
+        return;
+    }
     writeTextureSetOutput(result, f.textureSet, files);
     if (image)
         writeRenderOutput(result, f.out, sessionOut, f.bitDepth, files);
@@ -410,6 +456,7 @@ void addRenderCommand(CLI::App& app) {
     addTextureSetFlags(*cmd, flags->textureSet);
     addFrameFlags(*cmd, flags->frames);
     addSettleFlags(*cmd, flags->settle);
+    addSurfaceFlags(*cmd, flags->surface);
     cmd->callback([flags] { render(*flags); });
 }
 

@@ -1,0 +1,162 @@
+#include "cli/render_surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/output/colormap.hpp"
+#include "core/session/session.hpp"
+#include "core/surface/surface_features.hpp"
+#include "core/surface/surface_glb.hpp"
+#include "gl/surface_view.hpp"
+
+namespace morphogen::cli {
+
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+// Per atlas cell: the display chemical min-max normalised over the used texels
+// (the height of the relief) and its colour through the session's map.
+struct SurfaceColours {
+    std::vector<float> height;
+    std::vector<std::array<std::uint8_t, 4>> colours;
+};
+
+SurfaceColours surfaceColours(const RunResult& result, const Atlas& atlas) {
+    const Session& session = result.completed;
+    const int chemical = colormapChemical(session.colormap, session.outputModel());
+    const float* plane = result.state.plane(chemical);
+    float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+        if (atlas.used(i)) {
+            low = std::min(low, plane[i]);
+            high = std::max(high, plane[i]);
+        }
+    if (!(high > low))
+        high = low + 1.0f; // a flat result (warned about already): one colour
+    SurfaceColours c;
+    c.height.assign(atlas.cellCount(), 0.0f);
+    c.colours.assign(atlas.cellCount(), {0, 0, 0, 255});
+    const ColourMapRows rows(result.state, chemical, session.colormap, low, high);
+    std::vector<float> rgb(std::size_t(atlas.width()) * 3);
+    for (int y = 0; y < atlas.height(); ++y) {
+        rows.row(y, rgb.data());
+        for (int x = 0; x < atlas.width(); ++x) {
+            const std::uint32_t i = atlas.cellAt(x, y);
+            if (!atlas.used(i))
+                continue;
+            c.height[i] = (plane[i] - low) / (high - low);
+            for (int k = 0; k < 3; ++k)
+                c.colours[i][k] = std::uint8_t(
+                    std::lround(std::clamp(rgb[std::size_t(x) * 3 + k], 0.0f, 1.0f) * 255.0f));
+        }
+    }
+    return c;
+}
+
+std::string framePath(const std::string& out, int frame) {
+    std::filesystem::path p(out);
+    char suffix[16];
+    std::snprintf(suffix, sizeof suffix, "_%03d", frame);
+    return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
+void writeScreenshot(const gl::SurfaceImage& image, const std::string& path) {
+    writeImageRows(path, image.width, image.height, 4, 8, [&](int y, float* row) {
+        const std::uint8_t* src = image.rgba.data() + std::size_t(y) * image.width * 4;
+        for (int i = 0; i < image.width * 4; ++i)
+            row[i] = src[i] / 255.0f;
+    });
+}
+
+} // namespace
+
+bool isModelOutput(const std::string& out) {
+    return lowerExtension(out) == ".glb";
+}
+
+void checkSurfaceOutput(const std::string& out) {
+    if (isModelOutput(out))
+        return;
+    if (imageFormatForPath(out) == ImageFormat::Exr)
+        throw InputError("--out " + out +
+                         ": a surface render writes a screenshot (PNG, JPEG, "
+                         "TIFF) or the textured model (.glb), not raw EXR chemicals");
+}
+
+std::string describeSurfaceResult(const RunResult& result, const SurfaceSetup& setup) {
+    const Session& session = result.completed;
+    const SurfaceTiles& tiles = setup.tiles;
+    const int chemical = colormapChemical(session.colormap, session.outputModel());
+    const std::vector<SurfaceFeature> features = findSurfaceFeatures(
+        *tiles.atlas, result.state.plane(chemical), tiles.texelArea, tiles.texelPositions);
+    const FeatureAreaStats stats = featureAreaStats(features);
+    std::ostringstream os;
+    os.precision(3);
+    if (stats.count == 0)
+        return "no features on the surface";
+    const double across = boundsOf(setup.mesh.mesh.positions).diagonal() /
+                          std::sqrt(tiles.surfaceArea / double(stats.count));
+    os << stats.count << " features on the surface (spots or stripe pieces), about " << across
+       << " across the model (its bounding-box diagonal); feature areas vary by "
+       << stats.coefficientOfVariation * 100 << "% (coefficient of variation)";
+    return os.str();
+}
+
+std::vector<std::string> writeSurfaceOutput(const RunResult& result, const SurfaceSetup& setup,
+                                            const std::string& out, const std::string& sessionOut,
+                                            gl::Context* context,
+                                            std::optional<gl::ContextKind> contextKind,
+                                            OutputFiles& files) {
+    std::vector<std::string> written;
+    const Atlas& atlas = *setup.tiles.atlas;
+    const SurfaceColours c = surfaceColours(result, atlas);
+    const SurfaceView& v = result.completed.surface.view;
+    if (!out.empty() && isModelOutput(out)) {
+        exportSurfaceGlb(setup.tiles, c.height, c.colours, files.stage(out));
+        written.push_back(out);
+    } else if (!out.empty()) {
+        std::unique_ptr<gl::Context> own;
+        if (context)
+            context->makeCurrent();
+        else
+            own = gl::createHeadlessContext(contextKind);
+        gl::ViewOptions view;
+        view.width = v.width;
+        view.height = v.height;
+        view.azimuth = v.azimuth;
+        view.elevation = v.elevation;
+        view.distance = v.distance;
+        const gl::SurfaceRenderer renderer(texturedSurface(setup.tiles, c.height, c.colours));
+        if (v.turntable > 0) {
+            const std::vector<gl::SurfaceImage> frames =
+                gl::renderTurntable(renderer, view, v.turntable);
+            for (int k = 0; k < int(frames.size()); ++k) {
+                const std::string path = framePath(out, k);
+                writeScreenshot(frames[std::size_t(k)], files.stage(path));
+                written.push_back(path);
+            }
+        } else {
+            writeScreenshot(renderer.render(view), files.stage(out));
+            written.push_back(out);
+        }
+    }
+    if (!sessionOut.empty()) {
+        saveSessionFile(result.completed, files.stage(sessionOut));
+        written.push_back(sessionOut);
+    }
+    return written;
+}
+
+} // namespace morphogen::cli

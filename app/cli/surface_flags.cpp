@@ -1,0 +1,131 @@
+#include "cli/surface_flags.hpp"
+
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include "cli/flag_values.hpp"
+#include "core/base/errors.hpp"
+#include "core/base/limits.hpp"
+
+namespace morphogen::cli {
+
+namespace {
+
+std::vector<std::string> splitCommas(const std::string& text) {
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    std::string part;
+    while (std::getline(in, part, ','))
+        parts.push_back(part);
+    if (!text.empty() && text.back() == ',')
+        parts.emplace_back();
+    return parts;
+}
+
+// "auto" or 0 is automatic (0); otherwise a number in [min, max].
+int autoOrInteger(const std::string& flag, const std::string& text, int min, int max) {
+    if (text == "auto" || text == "0")
+        return 0;
+    return int(integerFlag(flag, text, min, max, " (or auto)"));
+}
+
+} // namespace
+
+void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
+    const std::string group = "Surface (grow the pattern on a 3D model)";
+    cmd.add_option("--mesh", f.mesh,
+                   "grow the pattern on this mesh (OBJ, glTF, GLB, or sample:sphere|torus|holes|"
+                   "blob); --out then takes a screenshot (.png, ...) or a textured model (.glb)")
+        ->group(group);
+    cmd.add_option("--tile-size", f.tileSize,
+                   "texels per tile side, " + std::to_string(kMinSurfaceTileSize) + ".." +
+                       std::to_string(kMaxSurfaceTileSize) +
+                       " (default auto: from the pattern's scale)")
+        ->group(group);
+    cmd.add_option("--tiles", f.tiles,
+                   "tile budget: the mesh is simplified to about a third as many triangles, "
+                   "each split into 3 tiles (default auto)")
+        ->group(group);
+    cmd.add_flag("--no-metric-correction", f.noMetricCorrection,
+                 "diffuse as if every texel were the same square (features then grow where the "
+                 "tiles are stretched)")
+        ->group(group);
+    cmd.add_option("--curvature-scale", f.curvatureScale,
+                   "shrink features where the mean curvature is high (strength, 0 = off; "
+                   "size factor 1 / (1 + S |H| / median |H|))")
+        ->group(group);
+    cmd.add_option("--view", f.view,
+                   "camera: AZIMUTH,ELEVATION[,DISTANCE] in degrees and bounding-sphere radii "
+                   "(default 30,20,2.6)")
+        ->group(group);
+    cmd.add_option("--resolution", f.resolution, "screenshot size WxH (default 1024x1024)")
+        ->group(group);
+    cmd.add_option("--turntable", f.turntable,
+                   "N screenshots around the model, OUT_000.png ... (0: one)")
+        ->group(group);
+}
+
+bool anySurfaceFlag(const SurfaceFlags& f) {
+    return !f.mesh.empty() || !f.tileSize.empty() || !f.tiles.empty() || f.noMetricCorrection ||
+           !f.curvatureScale.empty() || !f.view.empty() || !f.resolution.empty() ||
+           !f.turntable.empty();
+}
+
+void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
+    if (!f.mesh.empty()) {
+        SurfaceSpec spec = s.surface; // keep a session's view and options
+        spec.mesh = f.mesh;
+        if (f.mesh.rfind(kSampleMeshPrefix, 0) != 0)
+            spec.mesh = std::filesystem::absolute(f.mesh).lexically_normal().string();
+        s.surface = spec;
+    }
+    if (!anySurfaceFlag(f))
+        return;
+    if (!s.surface.active())
+        throw InputError("the surface flags (--tile-size, --tiles, --no-metric-correction, "
+                         "--curvature-scale, --view, --resolution, --turntable) need a mesh: "
+                         "give --mesh FILE");
+    SurfaceSpec& spec = s.surface;
+    if (!f.tileSize.empty())
+        spec.tileSize =
+            autoOrInteger("--tile-size", f.tileSize, kMinSurfaceTileSize, kMaxSurfaceTileSize);
+    if (!f.tiles.empty())
+        spec.tiles = autoOrInteger("--tiles", f.tiles, kMinSurfaceTiles, kMaxSurfaceTiles);
+    if (f.noMetricCorrection)
+        spec.metricCorrection = false;
+    if (!f.curvatureScale.empty()) {
+        spec.scaleStrength =
+            numberFlag("--curvature-scale", f.curvatureScale, 0, kMaxSurfaceScaleStrength);
+        spec.scaleBy =
+            spec.scaleStrength > 0 ? SurfaceScaleBy::MeanCurvature : SurfaceScaleBy::None;
+    }
+    if (!f.view.empty()) {
+        const std::vector<std::string> parts = splitCommas(f.view);
+        if (parts.size() < 2 || parts.size() > 3)
+            throw InputError("--view '" + f.view +
+                             "': expected AZIMUTH,ELEVATION[,DISTANCE] (e.g. 30,20 or 45,10,3)");
+        spec.view.azimuth = numberFlag("--view azimuth", parts[0], -360, 360);
+        spec.view.elevation = numberFlag("--view elevation", parts[1], -90, 90);
+        if (parts.size() == 3)
+            spec.view.distance =
+                numberFlag("--view distance", parts[2], kMinViewDistance, kMaxViewDistance,
+                           " (bounding-sphere radii from the model's centre)");
+    }
+    if (!f.resolution.empty()) {
+        const std::size_t x = f.resolution.find('x');
+        const std::string range =
+            std::to_string(kMinViewSide) + ".." + std::to_string(kMaxViewSide);
+        if (x == std::string::npos)
+            throw InputError("--resolution '" + f.resolution + "': expected WxH with sides in " +
+                             range + " (e.g. 1024x768)");
+        spec.view.width = int(integerFlag("--resolution width", f.resolution.substr(0, x),
+                                          kMinViewSide, kMaxViewSide));
+        spec.view.height = int(integerFlag("--resolution height", f.resolution.substr(x + 1),
+                                           kMinViewSide, kMaxViewSide));
+    }
+    if (!f.turntable.empty())
+        spec.view.turntable = int(integerFlag("--turntable", f.turntable, 0, kMaxTurntableFrames));
+}
+
+} // namespace morphogen::cli

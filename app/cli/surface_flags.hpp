@@ -1,0 +1,36 @@
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "core/session/session.hpp"
+
+namespace morphogen::cli {
+
+// render's flags for growing a pattern on a mesh (the session's "surface"
+// block, core/session/surface_spec.hpp). Numbers are text until applied, so a
+// bad value is refused naming the flag.
+struct SurfaceFlags {
+    std::string mesh;
+    std::string tileSize;
+    std::string tiles;
+    bool noMetricCorrection = false;
+    std::string curvatureScale;
+    std::string view;
+    std::string resolution;
+    std::string turntable;
+};
+
+void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags);
+
+// Whether any surface flag was given.
+bool anySurfaceFlag(const SurfaceFlags& flags);
+
+// Applies the flags to `session`: --mesh starts (or replaces) its surface;
+// the other flags need a surface, from --mesh or the session. A mesh path
+// from the command line is made absolute, so the written session finds it
+// from any folder. Throws InputError naming the flag.
+void applySurfaceFlags(const SurfaceFlags& flags, Session& session);
+
+} // namespace morphogen::cli
