@@ -18,6 +18,8 @@ namespace {
 using Kernel = CGAL::Simple_cartesian<double>;
 using Point = Kernel::Point_3;
 using Triangle = Kernel::Triangle_3;
+using Ray = Kernel::Ray_3;
+using Vector = Kernel::Vector_3;
 using TriangleIterator = std::vector<Triangle>::const_iterator;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
@@ -94,6 +96,43 @@ SurfacePoint MeshProjector::closest(const Eigen::Vector3f& query) const {
     const Eigen::Vector3d* c = &m.corners[3 * std::size_t(s.triangle)];
     s.barycentric = barycentricOf(p, c[0], c[1], c[2]).cast<float>();
     return s;
+}
+
+bool MeshProjector::alongLine(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
+                              float maxDistance, SurfacePoint& out) const {
+    const Impl& m = *m_impl;
+    const Eigen::Vector3d o = origin.cast<double>();
+    const Eigen::Vector3d d = direction.cast<double>().normalized();
+    if (!d.allFinite())
+        return false;
+    double best = double(maxDistance);
+    bool found = false;
+    Eigen::Vector3d bestPoint;
+    std::uint32_t bestTriangle = 0;
+    for (double sign : {1.0, -1.0}) {
+        const Ray ray(Point(o.x(), o.y(), o.z()), Vector(sign * d.x(), sign * d.y(), sign * d.z()));
+        const auto hit = m.tree.first_intersection(ray);
+        if (!hit)
+            continue;
+        const Point* p = boost::get<Point>(&hit->first);
+        if (!p)
+            continue; // the ray runs in a triangle's plane: no single point
+        const Eigen::Vector3d at(p->x(), p->y(), p->z());
+        const double distance = (at - o).norm();
+        if (distance <= best) {
+            best = distance;
+            bestPoint = at;
+            bestTriangle = std::uint32_t(hit->second - m.triangles.cbegin());
+            found = true;
+        }
+    }
+    if (!found)
+        return false;
+    out.triangle = bestTriangle;
+    out.position = bestPoint.cast<float>();
+    const Eigen::Vector3d* c = &m.corners[3 * std::size_t(bestTriangle)];
+    out.barycentric = barycentricOf(bestPoint, c[0], c[1], c[2]).cast<float>();
+    return true;
 }
 
 } // namespace morphogen

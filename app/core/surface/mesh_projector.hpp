@@ -21,7 +21,7 @@ struct SurfacePoint {
 // Closest-point queries on a fixed triangle mesh: CGAL's AABB tree, built once
 // (O(F log F)); each query is O(log F) on a well-shaped mesh. closest() is
 // safe to call from several threads at once (the tree and its search hints
-// are built in the constructor, queries only read them). The mesh must have
+// are built in the constructor, queries only read them); so is alongLine(). The mesh must have
 // at least one triangle and outlive nothing: the projector keeps a copy.
 class MeshProjector {
 public:
@@ -31,6 +31,13 @@ public:
     MeshProjector& operator=(const MeshProjector&) = delete;
 
     SurfacePoint closest(const Eigen::Vector3f& query) const;
+
+    // The nearest point of the mesh on the line through `origin` along
+    // `direction` (either way), if one lies within maxDistance of the origin.
+    // Returns false (out untouched) when the line misses the mesh within that
+    // distance or only grazes it (runs inside a triangle's plane).
+    bool alongLine(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
+                   float maxDistance, SurfacePoint& out) const;
 
 private:
     struct Impl;

@@ -3,6 +3,7 @@
 #include <functional>
 
 #include "core/mesh/triangle_mesh.hpp"
+#include "core/surface/mesh_projector.hpp"
 #include "core/surface/surface_tiles.hpp"
 
 namespace morphogen {
@@ -23,6 +24,10 @@ namespace morphogen {
 // points of the surface on both sides. `progress` (may be empty) gets the
 // fraction of tiles done.
 void computeSurfaceGeometry(SurfaceTiles& tiles, const TriangleMesh& full,
+                            const std::function<void(double)>& progress = {});
+// The same with a projector already built on `full`.
+void computeSurfaceGeometry(SurfaceTiles& tiles, const TriangleMesh& full,
+                            const MeshProjector& projector,
                             const std::function<void(double)>& progress = {});
 
 } // namespace morphogen

@@ -48,8 +48,8 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
             areaSum += a;
         }
     const double medianArea = median(areas);
-    const double minArea = 1e-3 * medianArea;
-    const double minDistance = 1e-3 * std::sqrt(medianArea);
+    const double minArea = 0.05 * medianArea;
+    const double minDistance = 0.2 * std::sqrt(medianArea);
     const double meanArea = areas.empty() ? 1.0 : areaSum / double(areas.size());
 
     AtlasWeights w;

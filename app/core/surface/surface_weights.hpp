@@ -29,8 +29,13 @@ struct SurfaceWeightOptions {
 // j the flux coefficient is c_ij = l_ij / d_ij, with d_ij the distance between
 // the two texel centres on the surface (the chord; texels are small) and l_ij
 // the length of the face they share: the mean of the two texels' widths
-// across the step, each in its own frame (|Jv| for a step along u, |Ju| for a
-// step along v). c_ij is dimensionless, so only the area carries the units:
+// across the step, each in its own frame (area / |Ju| for a step along u,
+// area / |Jv| along v: |Jv| and |Ju| on a rectangular texel; on a sheared
+// one the perpendicular width, which makes the stencil's effective diffusion
+// tensor have trace 2 as on a square grid, spreading a blob at the right
+// rate on average; a 5-point stencil cannot be isotropic on a sheared texel,
+// its tensor has eigenvalues 1 +- cos(angle between Ju and Jv)). c_ij is
+// dimensionless, so only the area carries the units:
 // coefficients[i][d] = c_ij / area_i. c_ij is computed once per pair, so the
 // flux is exactly symmetric and diffusion conserves sum(area * u).
 // Without correction: c_ij = 1 and area = h^2 for every texel, h^2 the mean
@@ -38,9 +43,13 @@ struct SurfaceWeightOptions {
 // featureScale f multiplies c_ij by f_i * f_j (the geometric mean of the two
 // texels' rates f^2).
 // A step into an unglued tile edge (an open boundary) has coefficient 0: zero
-// flux. Degenerate texels are guarded: areas and distances below 1e-3 of the
-// surface's median are raised to that floor, so a collapsed texel cannot make
-// a coefficient infinite. Unused cells get zeros.
+// flux. Degenerate texels are guarded: an area below 5% of the surface's
+// median texel area, and a centre distance below 0.2 of the median texel
+// width, count as that floor. The few texels folded or squeezed where a
+// simplified triangle spans a smaller feature would otherwise force a time
+// step hundreds of times smaller; with the floors the largest coefficient sum
+// stays within some 20x the median on the sample meshes. The floored values
+// serve both sides of a pair, so conservation holds. Unused cells get zeros.
 // Throws InputError if unitsPerWorld is not positive and finite, or if
 // featureScale has the wrong size or a value that is not positive and finite.
 AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOptions& options);

@@ -10,6 +10,7 @@
 #include "core/mesh/mesh_check.hpp"
 #include "core/surface/mesh_simplify.hpp"
 #include "core/surface/surface_geometry.hpp"
+#include "core/surface/tile_mesh_quality.hpp"
 
 namespace morphogen {
 
@@ -102,7 +103,7 @@ SurfaceTiles buildSurfaceTiles(const TriangleMesh& full, const TileOptions& opti
     const int budget = options.tiles > 0 ? options.tiles : automaticTileBudget(options.tileSize);
     report("simplify", 0);
     SimplifyStats stats;
-    const TriangleMesh simplified = simplifyForTiles(full, std::size_t(budget / 3), &stats);
+    TriangleMesh simplified = simplifyForTiles(full, std::size_t(budget / 3), &stats);
     const long long tiles = 3 * static_cast<long long>(simplified.triangles.size());
     if (tiles > maxTiles(options.tileSize))
         throw InputError(source + ": " + std::to_string(full.triangles.size()) +
@@ -114,9 +115,12 @@ SurfaceTiles buildSurfaceTiles(const TriangleMesh& full, const TileOptions& opti
                          " texels fit the limits: lower --tile-size or simplify the mesh first");
 
     report("tiles", 0);
+    const MeshProjector projector(full);
+    if (stats.simplified)
+        improveForTiles(simplified, projector);
     SurfaceTiles out = splitIntoTiles(simplified, options.tileSize);
     report("projection", 0);
-    computeSurfaceGeometry(out, full, [&](double f) { report("projection", f); });
+    computeSurfaceGeometry(out, full, projector, [&](double f) { report("projection", f); });
     report("projection", 1);
     return out;
 }

@@ -28,7 +28,9 @@ using TileProgress = std::function<void(const std::string& phase, double fractio
 // From a welded manifold mesh (loadMesh's output; open boundaries, several
 // components and any genus accepted) to tiles with their geometry:
 //  1. simplify to tiles / 3 triangles (simplifyForTiles; a mesh under budget
-//     is kept as it is),
+//     is kept as it is), then, if it was simplified, reshape its triangles
+//     into better tiles on the full mesh (improveForTiles: edge flips and
+//     tangential smoothing, same topology),
 //  2. split each triangle (a, b, c) into the quads (a, m_ab, g, m_ca),
 //     (b, m_bc, g, m_ab), (c, m_ca, g, m_bc) (m: edge midpoints, g: the
 //     centroid), which run round in the triangle's own sense, so tiles of
