@@ -11,7 +11,7 @@ packages=(
   libgl1-mesa-dri
   libopenimageio-dev libtinygltf-dev libstb-dev libeigen3-dev nlohmann-json3-dev
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev libmeshoptimizer-dev
-  libtinyobjloader-dev
+  libtinyobjloader-dev libcgal-dev
   xvfb xauth
 )
 

@@ -1,0 +1,66 @@
+#pragma once
+
+#include <vector>
+
+#include "core/domain/atlas_weights.hpp"
+#include "core/surface/surface_tiles.hpp"
+
+namespace morphogen {
+
+struct SurfaceWeightOptions {
+    // Model units per world unit: a session's length scale on the surface.
+    double unitsPerWorld = 1.0;
+    // On: the diffusion follows the surface's metric (Lo section 3, Witkin &
+    // Kass eq. 8), so features have the same size in world units wherever
+    // tiles are stretched. Off: the paper's uncorrected baseline, every texel
+    // a square of the mean texel size.
+    bool metricCorrection = true;
+    // Per atlas cell (cellCount() entries) or null: a factor on the feature
+    // size; the diffusion rate scales with its square (curvatureScale).
+    const std::vector<float>* featureScale = nullptr;
+};
+
+// Per-texel weights of the 5-point Laplacian on the tiled surface (the
+// AtlasWeights contract: coefficients[i][d] * area[i] is the same from both
+// sides of every glued texel pair, up to float rounding: one flux per pair).
+//
+// With correction, a finite-volume Laplacian on the surface: texel i is a cell
+// of area |Ju x Jv| (world) * unitsPerWorld^2, and between i and its neighbour
+// j the flux coefficient is c_ij = l_ij / d_ij, with d_ij the distance between
+// the two texel centres on the surface (the chord; texels are small) and l_ij
+// the length of the face they share: the mean of the two texels' widths
+// across the step, each in its own frame (area / |Ju| for a step along u,
+// area / |Jv| along v: |Jv| and |Ju| on a rectangular texel; on a sheared
+// one the perpendicular width, which makes the stencil's effective diffusion
+// tensor have trace 2 as on a square grid, spreading a blob at the right
+// rate on average; a 5-point stencil cannot be isotropic on a sheared texel,
+// its tensor has eigenvalues 1 +- cos(angle between Ju and Jv)). c_ij is
+// dimensionless, so only the area carries the units:
+// coefficients[i][d] = c_ij / area_i. c_ij is computed once per pair, so the
+// flux is exactly symmetric and diffusion conserves sum(area * u).
+// Without correction: c_ij = 1 and area = h^2 for every texel, h^2 the mean
+// texel area (model units), as if the surface were a flat grid of squares.
+// featureScale f multiplies c_ij by f_i * f_j (the geometric mean of the two
+// texels' rates f^2).
+// A step into an unglued tile edge (an open boundary) has coefficient 0: zero
+// flux. Degenerate texels are guarded: an area below 5% of the surface's
+// median texel area, and a centre distance below 0.2 of the median texel
+// width, count as that floor. The few texels folded or squeezed where a
+// simplified triangle spans a smaller feature would otherwise force a time
+// step hundreds of times smaller; with the floors the largest coefficient sum
+// stays within some 20x the median on the sample meshes. The floored values
+// serve both sides of a pair, so conservation holds. Unused cells get zeros.
+// Throws InputError if unitsPerWorld is not positive and finite, or if
+// featureScale has the wrong size or a value that is not positive and finite.
+AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOptions& options);
+
+// The feature size factor for curvature-scaled patterns (Lo section 5.2):
+//     f = 1 / (1 + strength * |H| / median |H|)
+// per used texel (H the mean curvature, the median over used texels), 1 for
+// unused cells and everywhere when the median is 0 (a flat surface). Features
+// shrink where the surface bends more than it typically does: at strength 1
+// a texel of median curvature gets half the size of a flat one. strength 0
+// gives all ones. Throws InputError for a negative or non-finite strength.
+std::vector<float> curvatureScale(const SurfaceTiles& tiles, double strength);
+
+} // namespace morphogen

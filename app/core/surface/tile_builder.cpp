@@ -1,0 +1,128 @@
+#include "core/surface/tile_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/base/errors.hpp"
+#include "core/base/limits.hpp"
+#include "core/mesh/edge_table.hpp"
+#include "core/mesh/mesh_check.hpp"
+#include "core/surface/mesh_simplify.hpp"
+#include "core/surface/surface_geometry.hpp"
+#include "core/surface/tile_mesh_quality.hpp"
+
+namespace morphogen {
+
+namespace {
+
+constexpr int kAutomaticTiles = 2000;
+constexpr int kMaxAtlasSide = 65535;
+
+// The most tiles of this size the limits and the atlas side allow.
+long long maxTiles(int tileSize) {
+    const long long perRow = kMaxAtlasSide / tileSize;
+    return std::min({perRow * perRow, static_cast<long long>(kMaxSurfaceTiles),
+                     kMaxSurfaceTexels / (static_cast<long long>(tileSize) * tileSize)});
+}
+
+} // namespace
+
+int automaticTileBudget(int tileSize) {
+    return int(std::min<long long>(kAutomaticTiles, maxTiles(tileSize)));
+}
+
+void checkTileOptions(const TileOptions& options) {
+    if (options.tileSize < kMinSurfaceTileSize || options.tileSize > kMaxSurfaceTileSize)
+        throw InputError("--tile-size " + std::to_string(options.tileSize) +
+                         " is out of range: a tile is " + std::to_string(kMinSurfaceTileSize) +
+                         " to " + std::to_string(kMaxSurfaceTileSize) + " texels on a side");
+    if (options.tiles == 0)
+        return;
+    if (options.tiles < kMinSurfaceTiles || options.tiles > kMaxSurfaceTiles)
+        throw InputError("--tiles " + std::to_string(options.tiles) +
+                         " is out of range: 0 (automatic) or " + std::to_string(kMinSurfaceTiles) +
+                         " to " + std::to_string(kMaxSurfaceTiles) +
+                         " tiles (3 per triangle of the simplified mesh)");
+    const long long texels =
+        static_cast<long long>(options.tiles) * options.tileSize * options.tileSize;
+    if (texels > kMaxSurfaceTexels || options.tiles > maxTiles(options.tileSize))
+        throw InputError("--tiles " + std::to_string(options.tiles) + " of --tile-size " +
+                         std::to_string(options.tileSize) + " is too many: at most " +
+                         std::to_string(maxTiles(options.tileSize)) + " tiles of " +
+                         std::to_string(options.tileSize) + "x" + std::to_string(options.tileSize) +
+                         " texels (" + std::to_string(kMaxSurfaceTexels) +
+                         " texels in all, an atlas under 65536 texels per side)");
+}
+
+SurfaceTiles splitIntoTiles(const TriangleMesh& mesh, int tileSize) {
+    SurfaceTiles out;
+    out.simplified = mesh;
+    const EdgeTable edges(mesh);
+    const int nv = int(mesh.positions.size());
+    const int ne = int(edges.edgeCount());
+    out.quadVertices = mesh.positions;
+    out.quadVertices.reserve(std::size_t(nv + ne) + mesh.triangles.size());
+    for (int e = 0; e < ne; ++e)
+        out.quadVertices.push_back(
+            0.5f * (mesh.positions[edges.lowVertex(e)] + mesh.positions[edges.highVertex(e)]));
+    for (const auto& t : mesh.triangles)
+        out.quadVertices.push_back(
+            (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0f);
+
+    out.quads.reserve(3 * mesh.triangles.size());
+    out.tileTriangle.reserve(3 * mesh.triangles.size());
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto& tri = mesh.triangles[t];
+        const int centroid = nv + ne + int(t);
+        for (int k = 0; k < 3; ++k) {
+            // Corner k's quad: its vertex, the midpoint of the edge leaving it
+            // (k -> k+1, used by corner k), the centroid, the midpoint of the
+            // edge arriving (k+2 -> k, used by corner k+2): the triangle's sense.
+            const int leaving = nv + int(edges.edgeOf(t, k));
+            const int arriving = nv + int(edges.edgeOf(t, (k + 2) % 3));
+            out.quads.push_back({int(tri[k]), leaving, centroid, arriving});
+            out.tileTriangle.push_back(std::uint32_t(t));
+        }
+    }
+    out.atlas = std::make_shared<const Atlas>(Atlas::fromQuads(tileSize, out.quads));
+    return out;
+}
+
+SurfaceTiles buildSurfaceTiles(const TriangleMesh& full, const TileOptions& options,
+                               const TileProgress& progress, const std::string& source) {
+    checkTileOptions(options);
+    const auto report = [&](const char* phase, double fraction) {
+        if (progress)
+            progress(phase, fraction);
+    };
+    if (full.triangles.empty())
+        throw InputError(source + ": the mesh has no triangles to lay tiles on");
+    requireManifold(checkMesh(full), source);
+
+    const int budget = options.tiles > 0 ? options.tiles : automaticTileBudget(options.tileSize);
+    report("simplify", 0);
+    SimplifyStats stats;
+    TriangleMesh simplified = simplifyForTiles(full, std::size_t(budget / 3), &stats);
+    const long long tiles = 3 * static_cast<long long>(simplified.triangles.size());
+    if (tiles > maxTiles(options.tileSize))
+        throw InputError(source + ": " + std::to_string(full.triangles.size()) +
+                         " triangles could only be simplified to " +
+                         std::to_string(simplified.triangles.size()) + " (" +
+                         std::to_string(tiles) + " tiles) keeping their topology and borders; " +
+                         "at most " + std::to_string(maxTiles(options.tileSize)) + " tiles of " +
+                         std::to_string(options.tileSize) + "x" + std::to_string(options.tileSize) +
+                         " texels fit the limits: lower --tile-size or simplify the mesh first");
+
+    report("tiles", 0);
+    const MeshProjector projector(full);
+    if (stats.simplified)
+        improveForTiles(simplified, projector);
+    SurfaceTiles out = splitIntoTiles(simplified, options.tileSize);
+    report("projection", 0);
+    computeSurfaceGeometry(out, full, projector, [&](double f) { report("projection", f); });
+    report("projection", 1);
+    return out;
+}
+
+} // namespace morphogen

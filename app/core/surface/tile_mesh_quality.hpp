@@ -1,0 +1,39 @@
+#pragma once
+
+#include <cstddef>
+
+#include "core/mesh/triangle_mesh.hpp"
+#include "core/surface/mesh_projector.hpp"
+
+namespace morphogen {
+
+struct MeshQualityStats {
+    std::size_t flips = 0;     // edges flipped
+    std::size_t moves = 0;     // vertex moves accepted
+    double minAngleBefore = 0; // smallest triangle angle, degrees
+    double minAngleAfter = 0;
+};
+
+// Makes a simplified mesh's triangles better tiles without changing its
+// topology: a simplifier keeps error low, not shapes good, and leaves slivers
+// (angles under 1 degree) whose tiles get texels of almost no area (a huge
+// diffusion coefficient, so a tiny stable time step) and, where a sliver lies
+// across a curved region, folded texels. `rounds` times:
+//  - flip each interior edge whose flip raises the smaller minimum angle of its
+//    two triangles, if the two are nearly coplanar (normals within 30 degrees),
+//    the new edge does not exist yet, the new triangles face the same way, and
+//    neither end of the edge drops below 4 triangles;
+//  - move each interior vertex towards the mean of its neighbours within its
+//    tangent plane, then onto the full-resolution mesh (`full`), if the worst
+//    shape of its triangles stays at least what it was or 0.5, whichever is
+//    less (shape: 4 sqrt(3) area / sum of squared edges, signed by the vertex
+//    normal; 1 equilateral, <= 0 folded), so folds and slivers only improve
+//    while sizes even out.
+// Vertices of open boundaries stay where they are. Changes V, E and F not at
+// all, so the components, boundaries and genus are those of the input.
+MeshQualityStats improveForTiles(TriangleMesh& mesh, const MeshProjector& full, int rounds = 4);
+
+// The smallest angle of any triangle, in degrees (180 for no triangles).
+double minimumAngle(const TriangleMesh& mesh);
+
+} // namespace morphogen
