@@ -63,6 +63,7 @@ void PingPong::runRect(const Program& program, const CellRect& rect) {
     }
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    m_otherMatches = false; // rect differs in the other set now
 }
 
 void GpuSimulator::applyBrush(const Brush& brush) {

@@ -9,6 +9,7 @@
 
 #include "core/domain/atlas.hpp"
 #include "core/domain/atlas_diagonals.hpp"
+#include "core/domain/atlas_weights.hpp"
 #include "core/operators/stability.hpp"
 
 namespace morphogen::gl {
@@ -92,7 +93,8 @@ int stateTextures(int chemicals) {
     return (chemicals + 3) / 4;
 }
 
-PingPong::PingPong(int width, int height, GLenum internalFormat, GLenum wrap, int count) {
+PingPong::PingPong(int width, int height, GLenum internalFormat, GLenum wrap, int count)
+    : m_width(width), m_height(height) {
     assert(count >= 1 && count <= int(std::size(kStateUnits)));
     for (std::size_t i = 0; i < 2; ++i) {
         std::vector<const Texture2D*> colours;
@@ -111,7 +113,41 @@ void PingPong::bindCurrent() const {
         current(t).bind(kStateUnits[t]);
 }
 
+void PingPong::runRects(const Program& program, int passes, const std::vector<CellRect>& rects) {
+    if (!m_otherMatches) {
+        // The other set becomes a copy of the current one, attachment by attachment.
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, m_framebuffers[std::size_t(m_current)].id());
+        for (int t = 0; t < count(); ++t) {
+            glReadBuffer(GLenum(GL_COLOR_ATTACHMENT0 + t));
+            m_textures[std::size_t(1 - m_current)][std::size_t(t)].bind(kStateUnits[0]);
+            glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, m_width, m_height);
+        }
+        glReadBuffer(GL_COLOR_ATTACHMENT0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        m_otherMatches = true;
+    }
+    program.use();
+    m_vao.bind();
+    glEnable(GL_SCISSOR_TEST);
+    for (int i = 0; i < passes; ++i) {
+        const int next = 1 - m_current;
+        m_framebuffers[std::size_t(next)].bind();
+        bindCurrent();
+        for (const CellRect& r : rects) {
+            glViewport(r.x, r.y, r.width, r.height);
+            glScissor(r.x, r.y, r.width, r.height);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
+        m_current = next;
+    }
+    glDisable(GL_SCISSOR_TEST);
+    glViewport(0, 0, m_width, m_height);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 void PingPong::run(const Program& program, int passes) {
+    if (passes > 0)
+        m_otherMatches = false;
     program.use();
     m_vao.bind();
     for (int i = 0; i < passes; ++i) {
@@ -148,6 +184,10 @@ GpuSimulator::GpuSimulator(const Session& session)
     if (const Atlas* atlas = m_k.domain.atlasMap()) {
         m_connectivity = Texture2D(atlas->width(), atlas->height(), GL_RGBA32UI);
         m_connectivity.uploadRgbaUint(atlas->connectivityMap());
+        if (const AtlasWeights* weights = m_k.domain.atlasWeights()) {
+            m_weights = Texture2D(atlas->width(), atlas->height(), GL_RGBA32F);
+            m_weights.uploadRgba(coefficientTexels(*weights));
+        }
         if (op.form == DiffusionOperator::Form::Laplacian9) {
             const auto diagonals = atlasDiagonals(*atlas);
             for (int order = 0; order < 2; ++order) {
@@ -219,6 +259,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         defines.push_back("TILES");
     if (m_k.domain.kind() == DomainKind::Atlas)
         defines.push_back("ATLAS");
+    if (m_k.weighted())
+        defines.push_back("ATLAS_WEIGHTS");
     if (pass)
         defines.push_back(pass);
     if (!m_frozenMask.empty())
@@ -241,6 +283,7 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         glUniform1i(program.uniform("uConnectivity"), kConnectivityUnit);
         glUniform1i(program.uniform("uDiagonals0"), kDiagonalUnits[0]);
         glUniform1i(program.uniform("uDiagonals1"), kDiagonalUnits[1]);
+        glUniform1i(program.uniform("uWeights"), kWeightsUnit);
         glUniform3i(program.uniform("uAtlas"), atlas->tileSize(), atlas->tilesPerRow(),
                     atlas->tileCount());
     }
@@ -262,6 +305,8 @@ void GpuSimulator::bindAuxiliaryTextures() const {
         m_frozen.bind(kFrozenUnit);
     if (m_connectivity.id())
         m_connectivity.bind(kConnectivityUnit);
+    if (m_weights.id())
+        m_weights.bind(kWeightsUnit);
     for (int order = 0; order < 2; ++order)
         if (m_diagonals[order].id())
             m_diagonals[order].bind(kDiagonalUnits[order]);
@@ -296,6 +341,7 @@ void GpuSimulator::setState(const State& state) {
             texture.uploadRows(y0, rows, texels.data());
         }
     }
+    m_pingPong.currentChanged();
 }
 
 void GpuSimulator::readBand(int y0, State& band, std::vector<float>& texels) const {
@@ -342,8 +388,30 @@ std::optional<std::string> GpuSimulator::insaneValue(const ReactionModel& model)
     return scan.result();
 }
 
+void GpuSimulator::setActiveTiles(const std::vector<int>& tiles) {
+    const std::vector<int> sorted = checkActiveTiles(m_k.domain, tiles);
+    m_activeRects.clear();
+    if (sorted.empty())
+        return;
+    const Atlas& atlas = *m_k.domain.atlasMap();
+    const int n = atlas.tileSize(), perRow = atlas.tilesPerRow();
+    for (int t : sorted) {
+        const int x = (t % perRow) * n, y = (t / perRow) * n;
+        CellRect* last = m_activeRects.empty() ? nullptr : &m_activeRects.back();
+        if (last && last->y == y && last->x + last->width == x)
+            last->width += n; // the next tile of the same atlas row
+        else
+            m_activeRects.push_back({x, y, n, n});
+    }
+}
+
 void GpuSimulator::run(int steps) {
     bindAuxiliaryTextures();
+    if (!m_activeRects.empty()) {
+        // fromSession refuses the semi-implicit integrator on atlases.
+        m_pingPong.runRects(m_program, steps, m_activeRects);
+        return;
+    }
     if (m_k.integrator == Integrator::ExplicitEuler) {
         m_pingPong.run(m_program, steps);
         return;

@@ -17,6 +17,7 @@ constexpr int kFrozenUnit = 4;
 constexpr int kConnectivityUnit = 9;       // atlas domains: the RGBA32UI connectivity map
 constexpr int kDiagonalUnits[] = {10, 11}; // 9-point on an atlas: diagonals, both orders
 constexpr int kBrushMaskUnit = 12;         // brush passes: the region's weights and noise
+constexpr int kWeightsUnit = 13;           // weighted atlases: 4 coefficients per texel (RGBA32F)
 
 // Two sets of `count` same-size float textures, each set behind one
 // framebuffer (multiple render targets); each pass samples the current set
@@ -30,6 +31,11 @@ public:
     // other set, whose rect is then copied back into the current one: the
     // current set changes in rect alone (gpu_brush.cpp).
     void runRect(const Program& program, const CellRect& rect);
+    // `passes` passes of `program` drawing `rects` only (viewport and scissor
+    // per rect); outside them both sets keep the current set's values (the
+    // other set is made a copy of the current one first when it may differ),
+    // so nothing outside changes however many passes run. Localized runs.
+    void runRects(const Program& program, int passes, const std::vector<CellRect>& rects);
     int count() const { return int(m_textures[0].size()); }
     Texture2D& current(int t = 0) { return m_textures[std::size_t(m_current)][std::size_t(t)]; }
     const Texture2D& current(int t = 0) const {
@@ -38,12 +44,18 @@ public:
     // Binds the current set to kStateUnits.
     void bindCurrent() const;
     const VertexArray& vertexArray() const { return m_vao; }
+    // Call after writing the current set from outside (uploads).
+    void currentChanged() { m_otherMatches = false; }
 
 private:
     VertexArray m_vao;
     std::array<std::vector<Texture2D>, 2> m_textures;
     std::array<Framebuffer, 2> m_framebuffers;
     int m_current = 0;
+    int m_width = 0, m_height = 0;
+    // runRects: whether the other set holds the current set's values (false
+    // after any pass or upload that changes the current set alone).
+    bool m_otherMatches = false;
 };
 
 // The state texture format for a model: RG32F for up to two chemicals (half
@@ -72,6 +84,7 @@ public:
     void run(int steps) override;
     void setFrozen(const std::vector<std::uint8_t>& frozen) override;
     void applyBrush(const Brush& brush) override; // gpu_brush.cpp
+    void setActiveTiles(const std::vector<int>& tiles) override;
 
     // The current state texture t (chemicals 4t..4t+3), for passes that read
     // the state where it lives (display, brushes) instead of reading it back.
@@ -111,8 +124,12 @@ private:
     Texture2D m_frozen;       // cascades: 255 where a cell is frozen (GL_R8)
     Texture2D m_connectivity; // atlas domains: 4 neighbours per texel, x | y << 16
     Texture2D m_diagonals[2]; // 9-point on an atlas: the diagonals, x then y / y then x
+    Texture2D m_weights;      // weighted atlases: +x, +y, -x, -y coefficients per texel
     std::vector<std::uint8_t> m_frozenMask;
     Program m_brushProgram; // built on the first chemical brush
+    // Localized runs: the active tiles' rectangles (runs of consecutive tiles
+    // in a row of the atlas merged); empty: the whole texture.
+    std::vector<CellRect> m_activeRects;
 
     // The uniforms a live change alters (dt, parameters, rates, kernels, map
     // coefficients) on one step program, and the semi-implicit weights.

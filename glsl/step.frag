@@ -18,6 +18,10 @@
 // outside every tile copy through unchanged. With STENCIL_9 a border texel's
 // diagonals come from uDiagonals0/1 (neighbour of neighbour, x then y and y
 // then x; see core/domain/atlas_diagonals.hpp) and are averaged.
+// ATLAS_WEIGHTS (with ATLAS, 5-point only) weights each texel's four links by
+// uWeights (RGBA32F: the +x, +y, -x, -y coefficients, core/domain/
+// atlas_weights.hpp): rate * (sum_d c_d u_d - (sum_d c_d) u), interior texels
+// too, summed in the CPU's order (StepConstants::weightPlanes).
 // The integrator is a second variant: (none) explicit Euler; RHS_PASS and
 // JACOBI_PASS the two passes of a semi-implicit step.
 // react() comes from the model's snippet, compiled in front of this file.
@@ -103,6 +107,9 @@ ivec2 tileNeighbour(int dx, int dy) {
 #ifdef ATLAS
 uniform usampler2D uConnectivity;
 uniform ivec3 uAtlas; // texels per tile side, tiles per row, tile count
+#ifdef ATLAS_WEIGHTS
+uniform sampler2D uWeights; // +x, +y, -x, -y coefficients of this texel's links
+#endif
 #ifdef STENCIL_9
 uniform usampler2D uDiagonals0; // (-x,-y), (+x,-y), (-x,+y), (+x,+y), reached x then y
 uniform usampler2D uDiagonals1; // the same, reached y then x
@@ -160,7 +167,25 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
               0.25 * (axy(t, mu) * (ru - lu) - axy(t, md) * (rd - ld));
     return xx + yy + xy;
 #else
-#ifdef ATLAS
+#ifdef ATLAS_WEIGHTS
+    // The CPU's order: -x, +x, -y, +y, each times its link's coefficient.
+    vec4 w = texelFetch(uWeights, ivec2(gl_FragCoord.xy), 0);
+    vec4 l, r, d, u;
+    if (gAtlasBorder) {
+        uvec4 n = texelFetch(uConnectivity, ivec2(gl_FragCoord.xy), 0);
+        r = texelFetch(state, unpackTexel(n.x), 0);
+        u = texelFetch(state, unpackTexel(n.y), 0);
+        l = texelFetch(state, unpackTexel(n.z), 0);
+        d = texelFetch(state, unpackTexel(n.w), 0);
+    } else {
+        l = AT(-1, 0);
+        r = AT(1, 0);
+        d = AT(0, -1);
+        u = AT(0, 1);
+    }
+    float wsum = ((w.z + w.x) + w.w) + w.y;
+    vec4 sides = ((w.z * l + w.x * r) + w.w * d) + w.y * u;
+#elif defined(ATLAS)
     // The CPU's order: -x, +x, -y, +y.
     vec4 sides;
     if (gAtlasBorder) {
@@ -190,6 +215,8 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
     vec4 corners = AT(-1, -1) + AT(1, -1) + AT(-1, 1) + AT(1, 1);
 #endif
     return uDiffusion[t] * ((4.0 * sides + corners - 20.0 * c) * (1.0 / 6.0));
+#elif defined(ATLAS_WEIGHTS)
+    return uDiffusion[t] * (sides - wsum * c);
 #else
     return uDiffusion[t] * (sides - 4.0 * c);
 #endif

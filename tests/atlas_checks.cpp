@@ -42,4 +42,43 @@ std::vector<std::uint32_t> cornerTexels(const Atlas& atlas, int tile) {
     return {a, atlas.step(a, Direction::MinusX).cell, atlas.step(a, Direction::MinusY).cell};
 }
 
+AtlasWeights symmetricWeights(const Atlas& atlas, unsigned seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<float> areaOf(0.8f, 1.25f), conductance(0.6f, 1.0f);
+    AtlasWeights w;
+    w.coefficients.assign(atlas.cellCount(), {0.0f, 0.0f, 0.0f, 0.0f});
+    w.area.assign(atlas.cellCount(), 0.0f);
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+        if (atlas.used(i))
+            w.area[i] = areaOf(random);
+    std::vector<std::array<bool, 4>> done(atlas.cellCount(), {false, false, false, false});
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i) {
+        if (!atlas.used(i))
+            continue;
+        for (int d = 0; d < 4; ++d) {
+            if (done[i][std::size_t(d)])
+                continue;
+            const AtlasStep s = atlas.step(i, Direction(d));
+            done[i][std::size_t(d)] = true;
+            if (s.cell == i) {
+                w.coefficients[i][std::size_t(d)] = 1.0f;
+                continue;
+            }
+            const float k = conductance(random);
+            w.coefficients[i][std::size_t(d)] = k / w.area[i];
+            w.coefficients[s.cell][std::size_t(s.back)] = k / w.area[s.cell];
+            done[s.cell][std::size_t(s.back)] = true;
+        }
+    }
+    return w;
+}
+
+double areaWeightedSum(const State& s, const Atlas& atlas, const AtlasWeights& weights, int c) {
+    double sum = 0;
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+        if (atlas.used(i))
+            sum += double(weights.area[i]) * double(s.plane(c)[i]);
+    return sum;
+}
+
 } // namespace morphogen::test

@@ -6,6 +6,7 @@
 
 #include "core/base/state.hpp"
 #include "core/domain/atlas.hpp"
+#include "core/domain/atlas_weights.hpp"
 #include "core/session/session.hpp"
 
 namespace morphogen::test {
@@ -27,5 +28,15 @@ double usedSum(const State& s, const Atlas& atlas, int c);
 // The three texels at corner 0 of tile `tile` (its corner texel and the two
 // corner texels one step across its -x and -y edges).
 std::vector<std::uint32_t> cornerTexels(const Atlas& atlas, int tile);
+
+// Non-uniform but flux-symmetric weights: a random area in [0.8, 1.25] per
+// used texel and a random conductance K in [0.6, 1] per glued pair of
+// neighbours, each side's coefficient K / its area (so c_ij a_i == c_ji a_j
+// up to float rounding, and every coefficient is at most 1.25: sums <= 5, in
+// gs_coral's explicit limit). Zero-flux links (a step that stays put) get 1.
+AtlasWeights symmetricWeights(const Atlas& atlas, unsigned seed);
+
+// Sum of area * chemical c over the used texels, in double.
+double areaWeightedSum(const State& s, const Atlas& atlas, const AtlasWeights& weights, int c);
 
 } // namespace morphogen::test

@@ -84,3 +84,43 @@ TEST(AtlasGpu, UnusedTexelsCopyThrough) {
             ASSERT_EQ(gpu.plane(0)[i], 7.0f);
     EXPECT_LT(test::maxAbsDifference(cpu, gpu), 1e-5f * test::maxAbsValue(cpu));
 }
+
+namespace {
+
+Session withWeights(Session s, const AtlasWeights& weights) {
+    useAtlas(s, s.atlas, std::make_shared<const AtlasWeights>(weights));
+    return s;
+}
+
+} // namespace
+
+// Per-texel weights (the ATLAS_WEIGHTS variant): non-uniform, flux-symmetric
+// weights on the cube and on rotated tiles, gs_coral for 60 steps.
+TEST(AtlasGpu, AgreesWithTheCpuWithNonUniformWeights) {
+    for (auto atlas : {std::make_shared<const Atlas>(Atlas::cube(16)),
+                       std::make_shared<const Atlas>(Atlas::rotatedTiles(8))}) {
+        const Session s = withWeights(test::atlasSession(atlas), test::symmetricWeights(*atlas, 5));
+        const State start =
+            makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, 11);
+        const State cpu = runOn<CpuSimulator>(s, start, 60);
+        const State gpu = runOn<gl::GpuSimulator>(s, start, 60);
+        // The same sums in the same order; a driver may contract multiply-adds
+        // (more of them here than unweighted): relative 1e-5 of the range.
+        EXPECT_LT(test::maxAbsDifference(cpu, gpu), 1e-5f * test::maxAbsValue(cpu));
+        EXPECT_GT(test::maxAbsDifference(cpu, start), 1e-3f) << "nothing happened";
+        // The weights matter: the unweighted run differs by far more.
+        const State plain = runOn<gl::GpuSimulator>(test::atlasSession(atlas), start, 60);
+        EXPECT_GT(test::maxAbsDifference(plain, gpu), 1e-3f);
+    }
+}
+
+TEST(AtlasGpu, SymmetricWeightsConserveTheAreaWeightedAmount) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    const AtlasWeights weights = test::symmetricWeights(*atlas, 9);
+    const Session s = withWeights(test::pureDiffusionSession(atlas), weights);
+    const State start = test::randomUsedState(*atlas, 3);
+    const State end = runOn<gl::GpuSimulator>(s, start, 200);
+    const double before = test::areaWeightedSum(start, *atlas, weights, 0);
+    EXPECT_NEAR(test::areaWeightedSum(end, *atlas, weights, 0), before, 1e-5 * before);
+    EXPECT_GT(test::maxAbsDifference(end, start), 0.05f) << "nothing diffused";
+}

@@ -2,6 +2,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/domain/atlas.hpp"
+#include "core/domain/atlas_weights.hpp"
 
 namespace morphogen {
 
@@ -39,6 +40,15 @@ Domain Domain::atlas(std::shared_ptr<const Atlas> atlas) {
     Domain d(GridDomain(atlas->width(), atlas->height(), EdgeMode::Clamped));
     d.m_kind = DomainKind::Atlas;
     d.m_atlas = std::move(atlas);
+    return d;
+}
+
+Domain Domain::atlas(std::shared_ptr<const Atlas> atlas,
+                     std::shared_ptr<const AtlasWeights> weights) {
+    if (weights)
+        checkAtlasWeights(*atlas, *weights);
+    Domain d = Domain::atlas(std::move(atlas));
+    d.m_weights = std::move(weights);
     return d;
 }
 

@@ -10,6 +10,7 @@
 namespace morphogen {
 
 class Atlas;
+struct AtlasWeights;
 
 // Where the cells are and who their neighbours are, read by both backends.
 // A feature never asks "is this a sweep?": it asks the domain's kind, and an
@@ -29,13 +30,19 @@ class Atlas;
 //              neighbours come from a connectivity map (core/domain/atlas.hpp).
 //              Interior texels use +-1 / +-width, border texels the map;
 //              texels outside every tile are unused and never change.
+//              With per-texel weights (atlas_weights.hpp, from the surface's
+//              metric) every used texel's Laplacian is the weighted 5-point
+//              one, sum_d c_d (u_d - u): interior texels too.
 //
 // Operators on an atlas (decided here, enforced in StepConstants::fromSession):
 //   5-point Laplacian  defined everywhere (four neighbours are all the map has).
+//                      With weights: the weighted 5-point Laplacian.
 //   9-point Laplacian  diagonals = neighbour of neighbour in the same frame,
 //                      the mean of both orders (x then y, y then x); the grid's
 //                      stencil away from irregular corners, and mass-conserving
 //                      at valence 3 and 5 (core/domain/atlas_diagonals.hpp).
+//                      With weights: the weighted 5-point runs instead (the
+//                      weights have no diagonals), and the plan says so.
 //   Witkin-Kass 3x3 tensors, McGraw's 5x5 kernels, tensor maps: refused with an
 //                      InputError naming the operator and the domain: their
 //                      cross terms and distance-2 taps need a frame that
@@ -63,6 +70,11 @@ public:
 
     static Domain tiledGrid(int width, int height, int columns, int rows);
     static Domain atlas(std::shared_ptr<const Atlas> atlas);
+    // An atlas with per-texel diffusion weights (atlas_weights.hpp): every
+    // used texel's Laplacian is the weighted 5-point one. Null weights: the
+    // plain atlas. Throws InputError for weights that do not fit the atlas.
+    static Domain atlas(std::shared_ptr<const Atlas> atlas,
+                        std::shared_ptr<const AtlasWeights> weights);
 
     DomainKind kind() const { return m_kind; }
     std::string name() const { return toString(m_kind); }
@@ -84,6 +96,9 @@ public:
     // Atlas only (null otherwise).
     const Atlas* atlasMap() const { return m_atlas.get(); }
     const std::shared_ptr<const Atlas>& sharedAtlas() const { return m_atlas; }
+    // Weighted atlas only (null otherwise).
+    const AtlasWeights* atlasWeights() const { return m_weights.get(); }
+    const std::shared_ptr<const AtlasWeights>& sharedAtlasWeights() const { return m_weights; }
 
     // The row dy rows from y (|dy| < tile height), wrapped or clamped by the
     // grid's edges or wrapped inside y's tile. An atlas answers as a clamped
@@ -108,6 +123,7 @@ private:
     GridDomain m_grid;
     int m_columns = 1, m_rows = 1;
     std::shared_ptr<const Atlas> m_atlas;
+    std::shared_ptr<const AtlasWeights> m_weights;
 };
 
 } // namespace morphogen

@@ -1,5 +1,6 @@
 #include "core/operators/stability.hpp"
 
+#include "core/domain/atlas_weights.hpp"
 #include "core/numerics/kernel_symbol.hpp"
 #include "core/operators/diffusion_operator.hpp"
 
@@ -57,6 +58,22 @@ ExplicitStability gershgorinStability(const DiffusionOperator& op, const std::st
 } // namespace
 
 ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& domain, double dt) {
+    if (const AtlasWeights* weights = domain.atlasWeights()) {
+        // The weighted 5-point Laplacian (the only operator a weighted atlas
+        // runs): row i has -rate S_i on the diagonal and off-diagonal entries
+        // summing to rate S_i, so |lambda| <= 2 rate max S.
+        double maxRate = 0;
+        for (int c = 0; c < op.chemicals; ++c)
+            maxRate = std::max(maxRate, double(op.rates[std::size_t(c)]));
+        ExplicitStability result;
+        const double bound = 2.0 * maxRate * double(maxCoefficientSum(*weights));
+        result.exact = false;
+        result.basis = "Gershgorin bound on the weighted atlas domain (largest rate times twice "
+                       "the largest sum of a texel's four weights; an atlas has no Fourier modes)";
+        result.spectralRadius = std::numeric_limits<double>::quiet_NaN();
+        result.maxStableDt = bound > 0 ? 2.0 / bound : std::numeric_limits<double>::infinity();
+        return result;
+    }
     if (domain.kind() == DomainKind::Atlas)
         return gershgorinStability(op, "Gershgorin bound on the atlas domain (largest rate times "
                                        "the stencil's bound; an atlas has no Fourier modes)");

@@ -32,7 +32,9 @@ ExplicitStability explicitStability(const DiffusionOperator& op, int width, int 
 // The same on a domain: a grid's Fourier modes, one tile's on a tiled grid.
 // An atlas has no Fourier modes: a safe bound instead, Gershgorin's (the
 // largest rate times the stencil's bound, diffusionSymbolBound), with
-// exact = false and `basis` saying so.
+// exact = false and `basis` saying so. A weighted atlas (atlas_weights.hpp)
+// bounds its weighted 5-point Laplacian the same way: |lambda| <= 2 * rate *
+// maxCoefficientSum.
 ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& domain, double dt);
 
 // The semi-implicit solve (I - dt A) x = rhs by Richardson relaxation passes

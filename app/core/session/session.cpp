@@ -15,6 +15,7 @@
 #include "core/base/json_fields.hpp"
 #include "core/base/json_input.hpp"
 #include "core/domain/atlas.hpp"
+#include "core/domain/atlas_weights.hpp"
 #include "core/io/output_files.hpp"
 #include "core/session/gradient.hpp"
 
@@ -48,7 +49,7 @@ std::string integratorNames() {
 
 Domain Session::domain() const {
     if (atlas)
-        return Domain::atlas(atlas);
+        return Domain::atlas(atlas, atlasWeights);
     if (tiles.active())
         return Domain::tiledGrid(width, height, tiles.columns, tiles.rows);
     return GridDomain(width, height, edges);
@@ -74,6 +75,16 @@ void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas) {
     session.schedule.clear();
     session.tiles = TileGrid{};
     session.atlas = std::move(atlas);
+    session.atlasWeights.reset();
+}
+
+void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas,
+              std::shared_ptr<const AtlasWeights> weights) {
+    assert(atlas);
+    if (weights)
+        checkAtlasWeights(*atlas, *weights);
+    useAtlas(session, std::move(atlas));
+    session.atlasWeights = std::move(weights);
 }
 
 const ReactionModel& Session::reactionModel() const {

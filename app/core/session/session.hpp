@@ -109,6 +109,9 @@ struct Session {
     // useAtlas from engine code (the mesh pipeline), not serialised. The grid
     // is then the atlas texture (width x height) and its unused texels.
     std::shared_ptr<const Atlas> atlas;
+    // Per-texel diffusion weights on that atlas (the surface's metric; null:
+    // one unit per texel), set by useAtlas; not serialised either.
+    std::shared_ptr<const AtlasWeights> atlasWeights;
 
     // The grid, the tiled grid of a batched sweep, or the atlas.
     Domain domain() const;
@@ -131,6 +134,10 @@ void resizeSession(Session& session, int width, int height);
 
 // Runs the session on `atlas`: its size becomes the atlas texture's.
 void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas);
+// The same with per-texel diffusion weights (null: none). Throws InputError
+// for weights that do not fit the atlas (checkAtlasWeights).
+void useAtlas(Session& session, std::shared_ptr<const Atlas> atlas,
+              std::shared_ptr<const AtlasWeights> weights);
 
 // Parses a session; `source` names the file (or preset) in error messages.
 // Unknown fields, wrong types and out-of-range values throw InputError.

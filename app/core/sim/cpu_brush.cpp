@@ -10,6 +10,7 @@ void CpuSimulator::applyBrush(const Brush& brush) {
     checkBrush(brush, m_model, m_k.domain);
     if (brush.region.empty())
         return;
+    m_nextMatches = false; // m_current changes alone
     const std::vector<BrushRegion::Cell>& cells = brush.region.cells();
     switch (brush.mode) {
     case BrushMode::Hold:

@@ -279,6 +279,69 @@ MORPHOGEN_VECTOR_CLONES void stepRows(const StepConstants& k, const State& in, S
     }
 }
 
+// Explicit Euler on rows [y0, y1) of a weighted atlas (StepConstants::
+// weightPlanes): stepRows with the weighted 5-point term, the four
+// coefficients streamed unit-stride from their planes. Columns 0 and w-1 and
+// the texture's outer rows hold only tile-border or unused texels, which the
+// caller redoes or restores, so the loop runs over columns 1..w-2 with the
+// rows above and below clamped.
+template <class Cell>
+MORPHOGEN_VECTOR_CLONES void stepRowsWeighted(const StepConstants& k, const State& in, State& out,
+                                              int y0, int y1) {
+    constexpr int n = Cell::kChemicals;
+    const int w = in.width(), h = in.height();
+    const std::size_t cells = in.cellCount();
+    const float* planes = k.weightPlanes->data();
+    const float dt = k.dt;
+    float rate[n], lo[n], hi[n];
+    for (int c = 0; c < n; ++c) {
+        rate[c] = k.op.rates[std::size_t(c)];
+        lo[c] = k.clampMin[c];
+        hi[c] = k.clampMax[c];
+    }
+    const Cell cell(k.params.data());
+    for (int y = y0; y < y1; ++y) {
+        const std::size_t row = std::size_t(y) * std::size_t(w);
+        const std::size_t below = std::size_t(y > 0 ? y - 1 : y) * std::size_t(w);
+        const std::size_t above = std::size_t(y < h - 1 ? y + 1 : y) * std::size_t(w);
+        const float* cpx = planes + row;
+        const float* cpy = planes + cells + row;
+        const float* cmx = planes + 2 * cells + row;
+        const float* cmy = planes + 3 * cells + row;
+        const float* mid[n];
+        const float* down[n];
+        const float* up[n];
+        float* next[n];
+        for (int c = 0; c < n; ++c) {
+            mid[c] = in.plane(c) + row;
+            down[c] = in.plane(c) + below;
+            up[c] = in.plane(c) + above;
+            next[c] = out.plane(c) + row;
+        }
+        // A lambda, so that conc and dcdt are not omp simd's per-lane arrays.
+        const auto texel = [&](int x) MORPHOGEN_INLINE_LAMBDA {
+            float conc[n], dcdt[n];
+            for (int c = 0; c < n; ++c)
+                conc[c] = mid[c][x];
+            cell.react(conc, dcdt);
+            const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
+            const float sum = ((a + b) + d) + e;
+#pragma GCC unroll 4
+            for (int c = 0; c < n; ++c) {
+                const float diffusion =
+                    Cell::diffuses(c)
+                        ? rate[c] * (((a * mid[c][x - 1] + b * mid[c][x + 1]) + d * down[c][x]) +
+                                     e * up[c][x] - sum * conc[c])
+                        : 0.0f;
+                next[c][x] = std::min(std::max(conc[c] + dt * (dcdt[c] + diffusion), lo[c]), hi[c]);
+            }
+        };
+#pragma omp simd
+        for (int x = 1; x < w - 1; ++x)
+            texel(x);
+    }
+}
+
 // rhs = c + dt react(c) on rows [y0, y1).
 template <class Cell, bool Tiled>
 MORPHOGEN_VECTOR_CLONES void rhsRows(const StepConstants& k, const State& in, State& out, int y0,
@@ -420,6 +483,22 @@ StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants
     // CpuSimulator::redoAtlasBorder).
     if (!fusedParamsOk(k))
         return nullptr;
+    if (k.weighted()) {
+        // fromSession leaves only the 5-point form on a weighted atlas.
+        if (k.op.form != DiffusionOperator::Form::Laplacian5)
+            return nullptr;
+        return withCell(model, [&](auto tag) -> StepRowsKernel {
+            using Cell = typename decltype(tag)::Type;
+            if constexpr (Cell::kChemicals > kMaxFusedChemicals) {
+                return nullptr;
+            } else {
+                for (int c = 0; c < Cell::kChemicals; ++c)
+                    if ((k.op.rates[std::size_t(c)] == 0.0f) == Cell::diffuses(c))
+                        return nullptr;
+                return &stepRowsWeighted<Cell>;
+            }
+        });
+    }
     const bool folded = foldsKernels(k.op);
     return withCell(model, [&](auto tag) -> StepRowsKernel {
         using Cell = typename decltype(tag)::Type;

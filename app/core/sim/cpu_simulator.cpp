@@ -208,6 +208,7 @@ CpuSimulator::CpuSimulator(const Session& session)
 }
 
 void CpuSimulator::setState(const State& state) {
+    m_nextMatches = false;
     // (m_current is empty after takeState.)
     assert(state.width() == m_session.width && state.height() == m_session.height &&
            state.channels() == m_k.chemicals);
@@ -215,6 +216,7 @@ void CpuSimulator::setState(const State& state) {
 }
 
 State CpuSimulator::takeState() {
+    m_nextMatches = false;
     m_next = State();
     m_rhs = State();
     m_tileRuns.clear();
@@ -266,7 +268,22 @@ void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil,
     const float* row = plane + std::size_t(y) * w;
     const float* down =
         plane + std::size_t(GridDomain::wrapOrClamp(y + 1, h, EdgeMode::Clamped)) * w;
-    laplacianRow(up, row, down, out, w, EdgeMode::Clamped, stencil);
+    if (m_k.weighted()) {
+        // The fused kernel's weighted sum (stepRowsWeighted), for the generic path.
+        const std::size_t cells = atlas.cellCount(), start = std::size_t(y) * w;
+        const float* planes = m_k.weightPlanes->data();
+        const float *cpx = planes + start, *cpy = planes + cells + start;
+        const float *cmx = planes + 2 * cells + start, *cmy = planes + 3 * cells + start;
+        out[0] = out[w - 1] = 0.0f; // border or unused: replaced below, or restored
+#pragma omp simd
+        for (int x = 1; x < w - 1; ++x) {
+            const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
+            const float sum = ((a + b) + d) + e;
+            out[x] = ((a * row[x - 1] + b * row[x + 1]) + d * up[x]) + e * down[x] - sum * row[x];
+        }
+    } else {
+        laplacianRow(up, row, down, out, w, EdgeMode::Clamped, stencil);
+    }
     const std::vector<std::uint32_t>& border = atlas.borderCells();
     const std::size_t rowStart = std::size_t(y) * w;
     for (std::size_t b = m_borderRows[std::size_t(y)]; b < m_borderRows[std::size_t(y) + 1]; ++b)
@@ -275,6 +292,16 @@ void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil,
 
 float CpuSimulator::atlasLaplacian(const float* plane, std::uint32_t cell, Stencil stencil) const {
     const std::array<std::uint32_t, 4>& n = m_k.domain.atlasMap()->neighbours()[cell];
+    if (m_k.weighted()) {
+        // StepConstants::weightPlanes' order; the interior loop's.
+        const std::size_t cells = m_current.cellCount();
+        const float* planes = m_k.weightPlanes->data();
+        const float b = planes[cell], e = planes[cells + cell];
+        const float a = planes[2 * cells + cell], d = planes[3 * cells + cell];
+        const float sum = ((a + b) + d) + e;
+        return ((a * plane[n[2]] + b * plane[n[0]]) + d * plane[n[3]]) + e * plane[n[1]] -
+               sum * plane[cell];
+    }
     // The interior loop's order: -x, +x, then the two vertical neighbours.
     const float sides = plane[n[2]] + plane[n[0]] + plane[n[3]] + plane[n[1]];
     if (stencil == Stencil::FivePoint)
@@ -351,7 +378,73 @@ void CpuSimulator::reactRow(RowView& view, int y, std::vector<float>& params) co
     }
 }
 
+void CpuSimulator::setActiveTiles(const std::vector<int>& tiles) {
+    m_activeTiles = checkActiveTiles(m_k.domain, tiles);
+    m_nextMatches = false;
+}
+
+void CpuSimulator::stepActiveTiles() {
+    const Atlas& atlas = *m_k.domain.atlasMap();
+    const int nc = m_k.chemicals, n = atlas.tileSize();
+    const float dt = m_k.dt;
+    if (!m_nextMatches) {
+        for (int c = 0; c < nc; ++c)
+            std::copy_n(m_current.plane(c), m_current.cellCount(), m_next.plane(c));
+        m_nextMatches = true;
+    }
+    const Stencil stencil = m_k.op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
+                                                                               : Stencil::NinePoint;
+    const int tiles = int(m_activeTiles.size());
+    // A tile's rows, each one react() call and the index array's Laplacian
+    // (the texels of a few tiles: no fused pass over the whole texture).
+#pragma omp parallel if (std::size_t(tiles) * std::size_t(n) * std::size_t(n) >= 65536)
+    {
+        const FlushDenormals flush;
+        std::vector<float> scratch(std::size_t(n) * std::size_t(nc));
+        RowView view;
+        view.n = n;
+        for (int c = 0; c < nc; ++c)
+            view.dcdt[c] = scratch.data() + std::size_t(c) * std::size_t(n);
+#pragma omp for schedule(static)
+        for (int i = 0; i < tiles; ++i) {
+            const int tile = m_activeTiles[std::size_t(i)];
+            for (int v = 0; v < n; ++v) {
+                const std::uint32_t start = atlas.tileCell(tile, 0, v);
+                for (int c = 0; c < nc; ++c)
+                    view.c[c] = m_current.plane(c) + start;
+                m_model.react(view, m_k.params.data());
+                for (int c = 0; c < nc; ++c) {
+                    const float d = m_k.op.rates[std::size_t(c)];
+                    const float* plane = m_current.plane(c);
+                    float* out = m_next.plane(c);
+                    const float lo = m_k.clampMin[c], hi = m_k.clampMax[c];
+                    for (int u = 0; u < n; ++u) {
+                        const std::uint32_t cell = start + std::uint32_t(u);
+                        const float term =
+                            d == 0.0f ? 0.0f : d * atlasLaplacian(plane, cell, stencil);
+                        out[cell] =
+                            std::min(std::max(plane[cell] + dt * (view.dcdt[c][u] + term), lo), hi);
+                    }
+                }
+                if (!m_frozenMask.empty())
+                    for (int u = 0; u < n; ++u)
+                        if (m_frozenMask[start + std::uint32_t(u)])
+                            for (int c = 0; c < nc; ++c)
+                                m_next.plane(c)[start + std::uint32_t(u)] =
+                                    m_current.plane(c)[start + std::uint32_t(u)];
+            }
+        }
+    }
+    std::swap(m_current, m_next);
+}
+
 void CpuSimulator::step() {
+    if (!m_activeTiles.empty()) {
+        // fromSession refuses the semi-implicit integrator on atlases.
+        stepActiveTiles();
+        return;
+    }
+    m_nextMatches = false;
     if (m_k.integrator == Integrator::SemiImplicit) {
         stepSemiImplicit();
         return;

@@ -26,6 +26,7 @@ public:
     void run(int steps) override;
     void setFrozen(const std::vector<std::uint8_t>& frozen) override;
     void applyBrush(const Brush& brush) override; // cpu_brush.cpp
+    void setActiveTiles(const std::vector<int>& tiles) override;
 
     // Semi-implicit runs: max over cells of |(I - dt A) c' - (c + dt f(c))|
     // for the last step, i.e. how far the relaxation passes left the solve.
@@ -39,6 +40,14 @@ private:
     // dc/dt of the reaction for one row into view.dcdt; per cell when
     // parameters vary per cell (param maps), else one call for the row.
     void reactRow(RowView& view, int y, std::vector<float>& params) const;
+    // Localized runs: one explicit step of the active tiles' texels only,
+    // through the index array, the others left as they are in both buffers.
+    void stepActiveTiles();
+    std::vector<int> m_activeTiles; // empty: all
+    // Whether m_next holds m_current's values outside the active tiles (then
+    // a localized step need not copy them); false after anything writes
+    // m_current alone or a whole step swaps the buffers.
+    bool m_nextMatches = false;
     // Frozen cells of m_next take their values from m_current.
     void restoreFrozen();
     // The diffusion term of chemical c on row y, rate included.

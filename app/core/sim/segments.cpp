@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/domain/atlas_weights.hpp"
 
 namespace morphogen {
 
@@ -23,7 +24,13 @@ double cellSizeAt(const Session& session, int width) {
 // stability limit, which scales as h^2; the semi-implicit step's diffusion is
 // implicit, so it keeps its dt.
 int substepsAt(const Session& session, double h) {
-    if (session.integrator != Integrator::ExplicitEuler || h >= 1.0)
+    if (session.integrator != Integrator::ExplicitEuler)
+        return 1;
+    // A weighted atlas's coefficients are 1/h^2 of its texels (in units^-2):
+    // its limit shrinks with their largest sum as a grid's with 4/h^2.
+    if (session.atlas && session.atlasWeights)
+        return weightedSubsteps(*session.atlasWeights);
+    if (h >= 1.0)
         return 1;
     return int(std::ceil(1.0 / (h * h) - 1e-9));
 }
@@ -144,7 +151,36 @@ std::vector<Segment> segmentsOf(const Session& session) {
     return segments;
 }
 
+namespace {
+
+// A weighted atlas's plan: its substeps and the stencil it runs.
+std::string describeWeightedAtlas(const Session& session) {
+    std::ostringstream os;
+    os << "weighted atlas (" << session.width << " x " << session.height << " texels)";
+    bool said = false;
+    if (session.diffusion.type == DiffusionType::Isotropic &&
+        session.diffusion.stencil == Stencil::NinePoint) {
+        os << "; the 9-point stencil runs as the weighted 5-point Laplacian (the weights have "
+              "no diagonals)";
+        said = true;
+    }
+    const int substeps = session.integrator == Integrator::ExplicitEuler
+                             ? weightedSubsteps(*session.atlasWeights)
+                             : 1;
+    if (substeps > 1) {
+        os << "; every step runs as " << substeps << " steps of dt/" << substeps
+           << " (the largest sum of a texel's weights is "
+           << maxCoefficientSum(*session.atlasWeights) << ", above the unit grid's 4)";
+        said = true;
+    }
+    return said ? os.str() : std::string();
+}
+
+} // namespace
+
 std::string describePlan(const Session& session) {
+    if (session.atlas && session.atlasWeights)
+        return describeWeightedAtlas(session);
     if (session.length <= 0 || session.tiles.active() || session.atlas)
         return {};
     const std::vector<Segment> segments = segmentsOf(session);

@@ -5,6 +5,8 @@
 #include <limits>
 
 #include "core/base/errors.hpp"
+#include "core/domain/atlas.hpp"
+#include "core/domain/atlas_weights.hpp"
 #include "core/numerics/kernel_symbol.hpp"
 #include "core/operators/stability.hpp"
 #include "core/session/param_map.hpp"
@@ -181,6 +183,15 @@ StepConstants StepConstants::fromSession(const Session& session) {
     k.op = compileDiffusion(unitRates);
     k.integrator = session.integrator;
     k.relaxationPasses = session.relaxationPasses;
+    if (const AtlasWeights* weights = k.domain.atlasWeights()) {
+        k.weightPlanes = std::make_shared<const std::vector<float>>(coefficientPlanes(*weights));
+        // The weights are the four links of each texel; they have no
+        // diagonals, so a 9-point request runs the weighted 5-point.
+        if (k.op.form == DiffusionOperator::Form::Laplacian9) {
+            k.op.form = DiffusionOperator::Form::Laplacian5;
+            k.nineToFivePoint = true;
+        }
+    }
     checkOperatorOnDomain(k);
     if (k.integrator == Integrator::SemiImplicit)
         loadRelaxationWeights(k);
@@ -211,6 +222,24 @@ bool updateLiveConstants(StepConstants& k, const Session& session) {
     k.omega = fresh.omega;
     k.contraction = fresh.contraction;
     return true;
+}
+
+std::vector<int> checkActiveTiles(const Domain& domain, const std::vector<int>& tiles) {
+    if (tiles.empty())
+        return {};
+    const Atlas* atlas = domain.atlasMap();
+    if (!atlas)
+        throw InputError("active tiles (localized reaction-diffusion) need an atlas domain; this "
+                         "one is a " +
+                         domain.name());
+    std::vector<int> sorted = tiles;
+    std::sort(sorted.begin(), sorted.end());
+    sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+    if (sorted.front() < 0 || sorted.back() >= atlas->tileCount())
+        throw InputError(
+            "active tile " + std::to_string(sorted.front() < 0 ? sorted.front() : sorted.back()) +
+            " is out of range (accepted: 0.." + std::to_string(atlas->tileCount() - 1) + ")");
+    return sorted;
 }
 
 std::optional<std::string> Simulator::insaneValue(const ReactionModel& model) const {

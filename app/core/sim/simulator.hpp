@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,19 @@ struct StepConstants {
     // this table instead, one tile segment of a row at a time.
     std::vector<float> tileParams;
 
+    // Weighted atlas: the coefficients as four planes (+x, +y, -x, -y, each
+    // cellCount floats; coefficientPlanes in atlas_weights.hpp), shared by
+    // copies. Null otherwise. The 5-point term of a texel is then
+    //   rate * ((c_-x u_-x + c_+x u_+x + c_-y u_-y + c_+y u_+y) - S u),
+    //   S = ((c_-x + c_+x) + c_-y) + c_+y,
+    // summed in that order on both backends, which with every c = 1 is the
+    // unweighted stencil's (l + r + d + u) - 4 u bit for bit.
+    std::shared_ptr<const std::vector<float>> weightPlanes;
+    // A 9-point stencil was asked for on a weighted atlas: the weighted
+    // 5-point runs (op.form is Laplacian5), and describePlan says so.
+    bool nineToFivePoint = false;
+
+    bool weighted() const { return weightPlanes != nullptr; }
     bool hasParamMaps() const { return !mappedParams.empty(); }
     bool tiled() const { return domain.kind() == DomainKind::TiledGrid; }
     // Whether every per-cell parameter is constant per tile and none is a
@@ -94,6 +108,12 @@ public:
     // re-uploaded whole). Throws InputError for a brush the model rejects
     // (checkBrush), and leaves the simulation unchanged then.
     virtual void applyBrush(const Brush& brush) = 0;
+    // Localized reaction-diffusion (core/sim/localized_rd.hpp): from the next
+    // step only the texels of these atlas tiles step; every other texel keeps
+    // its value exactly and still serves as a neighbour. Empty: every tile
+    // (the default). Throws InputError for a tile out of range or a domain
+    // that is not an atlas (with a non-empty set), and leaves the set as it was.
+    virtual void setActiveTiles(const std::vector<int>& tiles) = 0;
 
     // Live changes, in force from the next step, without a rebuild or a
     // read-back: the GPU updates uniforms, the CPU its StepConstants.
@@ -125,5 +145,9 @@ protected:
 // kernel growing from 3x3 to 5x5 as a rate leaves 0): k is then replaced
 // whole and the backend must rebuild its step.
 bool updateLiveConstants(StepConstants& k, const Session& session);
+
+// setActiveTiles' check: the set ascending without repeats; throws InputError
+// as setActiveTiles says.
+std::vector<int> checkActiveTiles(const Domain& domain, const std::vector<int>& tiles);
 
 } // namespace morphogen

@@ -1,0 +1,73 @@
+#include "core/domain/atlas_weights.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/base/errors.hpp"
+#include "core/domain/atlas.hpp"
+
+namespace morphogen {
+
+void checkAtlasWeights(const Atlas& atlas, const AtlasWeights& weights) {
+    const std::size_t cells = atlas.cellCount();
+    if (weights.coefficients.size() != cells || weights.area.size() != cells)
+        throw InputError("atlas weights: " + std::to_string(weights.coefficients.size()) +
+                         " coefficient and " + std::to_string(weights.area.size()) +
+                         " area entries for an atlas of " + std::to_string(atlas.width()) + " x " +
+                         std::to_string(atlas.height()) + " = " + std::to_string(cells) +
+                         " cells (accepted: one entry per atlas cell in both)");
+    const auto bad = [](float v) { return !std::isfinite(v) || v < 0.0f; };
+    for (std::size_t i = 0; i < cells; ++i) {
+        const auto& c = weights.coefficients[i];
+        if (bad(c[0]) || bad(c[1]) || bad(c[2]) || bad(c[3]) || bad(weights.area[i]))
+            throw InputError("atlas weights: cell " + std::to_string(i) + " (x " +
+                             std::to_string(i % std::size_t(atlas.width())) + ", y " +
+                             std::to_string(i / std::size_t(atlas.width())) +
+                             ") has a negative or non-finite coefficient or area (accepted: "
+                             "finite values >= 0)");
+    }
+}
+
+AtlasWeights uniformAtlasWeights(const Atlas& atlas, float coefficient) {
+    AtlasWeights w;
+    w.coefficients.assign(atlas.cellCount(), {0.0f, 0.0f, 0.0f, 0.0f});
+    w.area.assign(atlas.cellCount(), 0.0f);
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+        if (atlas.used(i)) {
+            w.coefficients[i] = {coefficient, coefficient, coefficient, coefficient};
+            w.area[i] = 1.0f;
+        }
+    return w;
+}
+
+float maxCoefficientSum(const AtlasWeights& weights) {
+    float worst = 0.0f;
+    for (const auto& c : weights.coefficients)
+        worst = std::max(worst, ((c[2] + c[0]) + c[3]) + c[1]);
+    return worst;
+}
+
+int weightedSubsteps(const AtlasWeights& weights) {
+    const double sum = maxCoefficientSum(weights);
+    return sum > 4.0 ? int(std::ceil(sum / 4.0 - 1e-9)) : 1;
+}
+
+std::vector<float> coefficientPlanes(const AtlasWeights& weights) {
+    const std::size_t cells = weights.coefficients.size();
+    std::vector<float> planes(4 * cells);
+    for (std::size_t i = 0; i < cells; ++i)
+        for (std::size_t d = 0; d < 4; ++d)
+            planes[d * cells + i] = weights.coefficients[i][d];
+    return planes;
+}
+
+std::vector<float> coefficientTexels(const AtlasWeights& weights) {
+    std::vector<float> texels(4 * weights.coefficients.size());
+    for (std::size_t i = 0; i < weights.coefficients.size(); ++i)
+        std::copy(weights.coefficients[i].begin(), weights.coefficients[i].end(),
+                  texels.begin() + std::ptrdiff_t(4 * i));
+    return texels;
+}
+
+} // namespace morphogen

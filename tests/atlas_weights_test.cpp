@@ -1,0 +1,177 @@
+// Per-texel weights on an atlas on the CPU (atlas_weights.hpp): unit weights
+// are the unweighted atlas bit for bit, the weights reach interior and border
+// texels alike, flux-symmetric weights conserve the area-weighted amount, the
+// stability bound and substeps follow the weights, and weights that do not fit
+// the atlas are refused.
+
+#include <gtest/gtest.h>
+
+#include "atlas_checks.hpp"
+#include "core/base/errors.hpp"
+#include "core/models/initial_condition.hpp"
+#include "core/operators/stability.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "core/sim/segments.hpp"
+#include "test_support.hpp"
+
+using namespace morphogen;
+
+namespace {
+
+State runOn(const Session& s, const State& start, int steps) {
+    CpuSimulator sim(s);
+    sim.setState(start);
+    sim.run(steps);
+    return sim.state();
+}
+
+Session weighted(Session s, std::shared_ptr<const AtlasWeights> weights) {
+    useAtlas(s, s.atlas, std::move(weights));
+    return s;
+}
+
+State startOf(const Session& s, unsigned seed) {
+    return makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, seed);
+}
+
+} // namespace
+
+TEST(AtlasWeightsCpu, UnitWeightsAreTheUnweightedAtlasBitForBit) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::periodicPlane(8, 3, 2));
+    auto unit = std::make_shared<const AtlasWeights>(uniformAtlasWeights(*atlas));
+    // gs_coral: the fused kernel; meinhardt (six chemicals): the generic path.
+    for (const char* preset : {"gs_coral", "meinhardt_random_stripes"}) {
+        SCOPED_TRACE(preset);
+        Session plain = loadPreset(preset);
+        useAtlas(plain, atlas);
+        const Session withWeights = weighted(plain, unit);
+        const State start = startOf(plain, 5);
+        const State a = runOn(plain, start, 80), b = runOn(withWeights, start, 80);
+        EXPECT_EQ(test::maxAbsDifference(a, b), 0.0f);
+        EXPECT_GT(test::maxAbsDifference(a, start), 1e-4f) << "nothing happened";
+    }
+}
+
+TEST(AtlasWeightsCpu, WeightsTwoAreDoubledRatesOnInteriorAndBorderTexels) {
+    // rate * (2 l + 2 r + 2 d + 2 u - 8 c) and (2 rate) * (l + r + d + u - 4 c)
+    // round the same: equal bits on every texel, so the weights are read on
+    // interior texels (the fused rows) and border texels (the index array).
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    const Session plain = test::atlasSession(atlas);
+    Session doubled = plain;
+    doubled.params["Du"] *= 2.0f;
+    doubled.params["Dv"] *= 2.0f;
+    doubled.dt = 0.5f; // within the doubled rates' limit for both
+    Session twos =
+        weighted(plain, std::make_shared<const AtlasWeights>(uniformAtlasWeights(*atlas, 2.0f)));
+    twos.dt = 0.5f;
+    const State start = startOf(plain, 3);
+    const State a = runOn(doubled, start, 60), b = runOn(twos, start, 60);
+    EXPECT_EQ(test::maxAbsDifference(a, b), 0.0f);
+    EXPECT_GT(test::maxAbsDifference(runOn(twos, start, 60), runOn(plain, start, 60)), 1e-4f)
+        << "the weights changed nothing";
+}
+
+TEST(AtlasWeightsCpu, NinePointOnAWeightedAtlasRunsTheWeighted5PointAndSaysSo) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    auto unit = std::make_shared<const AtlasWeights>(uniformAtlasWeights(*atlas));
+    const Session five = weighted(test::atlasSession(atlas, Stencil::FivePoint), unit);
+    const Session nine = weighted(test::atlasSession(atlas, Stencil::NinePoint), unit);
+    const State start = startOf(five, 2);
+    EXPECT_EQ(test::maxAbsDifference(runOn(five, start, 30), runOn(nine, start, 30)), 0.0f);
+    EXPECT_TRUE(StepConstants::fromSession(nine).nineToFivePoint);
+    EXPECT_NE(describePlan(nine).find("the 9-point stencil runs as the weighted 5-point"),
+              std::string::npos)
+        << describePlan(nine);
+    EXPECT_EQ(describePlan(five), "");
+}
+
+namespace {
+
+void expectAreaWeightedMassConserved(std::shared_ptr<const Atlas> atlas) {
+    auto weights = std::make_shared<const AtlasWeights>(test::symmetricWeights(*atlas, 17));
+    const Session s = weighted(test::pureDiffusionSession(atlas), weights);
+    const State start = test::randomUsedState(*atlas, 3);
+    const State end = runOn(s, start, 200);
+    const double before = test::areaWeightedSum(start, *atlas, *weights, 0);
+    const double after = test::areaWeightedSum(end, *atlas, *weights, 0);
+    // c_ij a_i equals c_ji a_j to float rounding (~1e-7): far below 1e-5
+    // relative after 200 steps; a weight read from the wrong side or link
+    // moves the amount by ~1e-3 relative or more (checked below).
+    EXPECT_NEAR(after, before, 1e-5 * before);
+    EXPECT_GT(test::maxAbsDifference(end, start), 0.05f) << "nothing diffused";
+    // The plain sum is not what the weights conserve.
+    EXPECT_GT(std::fabs(test::usedSum(end, *atlas, 0) - test::usedSum(start, *atlas, 0)),
+              1e-3 * test::usedSum(start, *atlas, 0));
+}
+
+} // namespace
+
+TEST(AtlasWeightsCpu, SymmetricWeightsConserveTheAreaWeightedAmountOnTheCube) {
+    expectAreaWeightedMassConserved(std::make_shared<const Atlas>(Atlas::cube(8)));
+}
+
+TEST(AtlasWeightsCpu, SymmetricWeightsConserveTheAreaWeightedAmountOnRotatedTiles) {
+    expectAreaWeightedMassConserved(std::make_shared<const Atlas>(Atlas::rotatedTiles(8)));
+}
+
+TEST(AtlasWeightsCpu, WeightsThatDoNotFitTheAtlasAreRefused) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(4));
+    Session s = test::atlasSession(atlas);
+    AtlasWeights shorter = uniformAtlasWeights(*atlas);
+    shorter.coefficients.pop_back();
+    try {
+        useAtlas(s, atlas, std::make_shared<const AtlasWeights>(shorter));
+        FAIL() << "weights of the wrong size were accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(
+                      "atlas weights: " + std::to_string(atlas->cellCount() - 1) +
+                      " coefficient and " + std::to_string(atlas->cellCount()) + " area entries"),
+                  std::string::npos)
+            << e.what();
+    }
+    AtlasWeights negative = uniformAtlasWeights(*atlas);
+    negative.area[5] = -1.0f;
+    EXPECT_THROW(useAtlas(s, atlas, std::make_shared<const AtlasWeights>(negative)), InputError);
+    // A session whose weights were swapped behind useAtlas's back is refused when it runs.
+    s.atlasWeights = std::make_shared<const AtlasWeights>(shorter);
+    EXPECT_THROW(CpuSimulator{s}, InputError);
+}
+
+TEST(AtlasWeightsCpu, StabilityAndSubstepsFollowTheLargestWeightSum) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    AtlasWeights w = uniformAtlasWeights(*atlas);
+    w.coefficients[atlas->tileCell(2, 3, 3)] = {3.0f, 2.0f, 2.5f, 2.0f}; // sum 9.5
+    const Session s = weighted(test::atlasSession(atlas), std::make_shared<const AtlasWeights>(w));
+    const ExplicitStability st = explicitStability(compileDiffusion(s), s.domain(), s.dt);
+    EXPECT_FALSE(st.exact);
+    EXPECT_NE(st.basis.find("weighted atlas"), std::string::npos) << st.basis;
+    ASSERT_TRUE(st.maxStableDt);
+    EXPECT_NEAR(*st.maxStableDt, 1.0 / (9.5 * s.params.at("Du")), 1e-6);
+    // ceil(9.5 / 4) = 3 steps of dt / 3 per session step, as ceil(1 / h^2) on grids.
+    const std::vector<Segment> segments = segmentsOf(s);
+    ASSERT_EQ(segments.size(), 1u);
+    EXPECT_EQ(segments[0].substeps, 3);
+    EXPECT_FLOAT_EQ(segments[0].session.dt, s.dt / 3.0f);
+    EXPECT_EQ(segments[0].session.steps, 3 * s.steps);
+    EXPECT_NE(describePlan(s).find("every step runs as 3 steps of dt/3"), std::string::npos)
+        << describePlan(s);
+    // Sums at most 4: no substeps.
+    const Session unit =
+        weighted(test::atlasSession(atlas),
+                 std::make_shared<const AtlasWeights>(uniformAtlasWeights(*atlas)));
+    EXPECT_EQ(segmentsOf(unit)[0].substeps, 1);
+}
+
+TEST(AtlasWeightsCpu, OperatorsAnAtlasCannotRunAreStillRefusedWithWeights) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    auto unit = std::make_shared<const AtlasWeights>(uniformAtlasWeights(*atlas));
+    for (const char* preset : {"wk_zebra", "gs_generalized_c"}) {
+        Session s = loadPreset(preset);
+        useAtlas(s, atlas, unit);
+        EXPECT_THROW(CpuSimulator{s}, InputError) << preset;
+    }
+    Session implicit = weighted(test::atlasSession(atlas), unit);
+    implicit.integrator = Integrator::SemiImplicit;
+    EXPECT_THROW(CpuSimulator{implicit}, InputError);
+}
