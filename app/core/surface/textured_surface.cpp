@@ -62,41 +62,55 @@ Eigen::Vector4f gridTangent(const SurfaceTiles& tiles, int tile, int i, int j) {
 RgbaImage bakeNormalMap(const Atlas& atlas, const DisplayAtlas& display,
                         const std::vector<float>& paddedHeight, const TexelFrames& frames,
                         float relief) {
-    RgbaImage image;
-    image.width = display.width();
-    image.height = display.height();
-    image.texels.assign(display.texelCount(), encodeNormal({0, 0, 1}));
     const int n = display.tileSize();
-    const int lo = -display.gutter(), hi = n + display.gutter() - 1;
+    // Per cell, the normal's tilt in world space, -relief times the surface
+    // gradient: central differences of the padded height (the gutter supplies
+    // the texels across the tile's edges) give the slope per texel, and
+    // J (J^T J)^-1 slope is the gradient (texels need not be square or
+    // right-angled).
+    std::vector<float> tilt(atlas.cellCount() * 3, 0.0f);
     for (int t = 0; t < display.tileCount(); ++t) {
         auto h = [&](int u, int v) {
             const std::array<int, 2> xy = display.texel(t, u, v);
-            return paddedHeight[std::size_t(xy[1]) * image.width + xy[0]];
+            return paddedHeight[std::size_t(xy[1]) * display.width() + xy[0]];
         };
-        for (int v = lo; v <= hi; ++v)
-            for (int u = lo; u <= hi; ++u) {
-                // Central differences, one-sided on the padded tile's outer ring.
-                const int u0 = std::max(u - 1, lo), u1 = std::min(u + 1, hi);
-                const int v0 = std::max(v - 1, lo), v1 = std::min(v + 1, hi);
-                const Eigen::Vector2f slope((h(u1, v) - h(u0, v)) / float(u1 - u0),
-                                            (h(u, v1) - h(u, v0)) / float(v1 - v0));
-                // The surface gradient J (J^T J)^-1 slope (texels need not be square or
-                // right-angled), in the orthonormal tangent frame the renderer rebuilds.
-                const std::uint32_t cell =
-                    atlas.tileCell(t, std::clamp(u, 0, n - 1), std::clamp(v, 0, n - 1));
+        for (int v = 0; v < n; ++v)
+            for (int u = 0; u < n; ++u) {
+                const std::uint32_t cell = atlas.tileCell(t, u, v);
+                const Eigen::Vector2f slope(0.5f * (h(u + 1, v) - h(u - 1, v)),
+                                            0.5f * (h(u, v + 1) - h(u, v - 1)));
                 Eigen::Matrix<float, 3, 2> J;
                 J << frames.jacobianU[cell], frames.jacobianV[cell];
                 const Eigen::Matrix2f metric = J.transpose() * J;
                 Eigen::Vector3f gradient = Eigen::Vector3f::Zero();
                 if (std::abs(metric.determinant()) > 1e-12f * metric.trace() * metric.trace())
                     gradient = J * (metric.inverse() * slope);
-                const Eigen::Vector3f normal(-relief * gradient.dot(frames.tangent[cell]),
-                                             -relief * gradient.dot(frames.bitangent[cell]), 1);
-                const std::array<int, 2> xy = display.texel(t, u, v);
-                image.texels[std::size_t(xy[1]) * image.width + xy[0]] =
-                    encodeNormal(normal.normalized());
+                for (int k = 0; k < 3; ++k)
+                    tilt[std::size_t(cell) * 3 + std::size_t(k)] = -relief * gradient[k];
             }
     }
+    // Padded like the colours, so a gutter texel holds its neighbour's tilt
+    // itself, then written in the tile's frame at its nearest texel (the
+    // frame the renderer rebuilds from the vertex tangents there): the
+    // tangent-space normal is normalize(tilt.tangent, tilt.bitangent, 1).
+    const std::vector<float> padded = display.pad(tilt, 3);
+    RgbaImage image;
+    image.width = display.width();
+    image.height = display.height();
+    image.texels.assign(display.texelCount(), encodeNormal({0, 0, 1}));
+    const int g = display.gutter();
+    for (int t = 0; t < display.tileCount(); ++t)
+        for (int v = -g; v < n + g; ++v)
+            for (int u = -g; u < n + g; ++u) {
+                const std::uint32_t cell =
+                    atlas.tileCell(t, std::clamp(u, 0, n - 1), std::clamp(v, 0, n - 1));
+                const std::array<int, 2> xy = display.texel(t, u, v);
+                const std::size_t p = std::size_t(xy[1]) * image.width + xy[0];
+                const Eigen::Vector3f w(padded[p * 3], padded[p * 3 + 1], padded[p * 3 + 2]);
+                const Eigen::Vector3f local(w.dot(frames.tangent[cell]),
+                                            w.dot(frames.bitangent[cell]), 1.0f);
+                image.texels[p] = encodeNormal(local.normalized());
+            }
     return image;
 }
 
@@ -110,6 +124,7 @@ TexelFrames texelFrames(const SurfaceTiles& tiles) {
     frames.jacobianV.assign(atlas.cellCount(), zero);
     frames.tangent.assign(atlas.cellCount(), zero);
     frames.bitangent.assign(atlas.cellCount(), zero);
+    frames.normal.assign(atlas.cellCount(), zero);
     double sum = 0;
     for (int t = 0; t < atlas.tileCount(); ++t) {
         const std::size_t base = perTile * std::size_t(t);
@@ -144,6 +159,7 @@ TexelFrames texelFrames(const SurfaceTiles& tiles) {
                 frames.jacobianV[cell] = pv;
                 frames.tangent[cell] = tangent;
                 frames.bitangent[cell] = bitangent;
+                frames.normal[cell] = normal;
                 sum += double(pu.norm()) + double(pv.norm());
             }
     }

@@ -60,21 +60,24 @@ TexturedMesh texturedSurface(const SurfaceTiles& tiles, const std::vector<float>
 // Per atlas cell (zero for unused cells), from the tiles' corner grids: the
 // Jacobian's columns (the means of the texel's two edges along u and along
 // v, world units per texel) and the orthonormal frame the normal map is in
-// (tangent: along u in the tangent plane; bitangent: perpendicular to it,
-// on the side of +v, as the renderer rebuilds it from the vertex tangents).
+// (normal: the mean of the corners'; tangent: along u in the tangent plane;
+// bitangent: perpendicular to both, on the side of +v, as the renderer
+// rebuilds it from the vertex tangents).
 struct TexelFrames {
-    std::vector<Eigen::Vector3f> jacobianU, jacobianV, tangent, bitangent;
+    std::vector<Eigen::Vector3f> jacobianU, jacobianV, tangent, bitangent, normal;
     float meanTexelLength = 0; // over every texel edge
 };
 TexelFrames texelFrames(const SurfaceTiles& tiles);
 
 // The tangent-space normal map of a padded height image (already padded by
-// `display`, row 0 first): central differences inside each padded tile give
-// the height's slope per texel, J (J^T J)^-1 turns it into the surface
-// gradient g, and the normal is normalize(-relief g.tangent, -relief
-// g.bitangent, 1), with `relief` the height's world-unit amplitude (Blinn's
-// bump mapping, Turk 1991 "Rendering"). A gutter texel uses the frame of its
-// nearest border texel. The formula texturedSurface uses.
+// `display`, row 0 first). Per cell, central differences give the height's
+// slope per texel, J (J^T J)^-1 turns it into the surface gradient g, and the
+// normal tilts by -relief g, `relief` being the height's world-unit amplitude
+// (Blinn's bump mapping, Turk 1991 "Rendering"). The tilts are padded like
+// the colours, so a gutter texel holds its neighbour's own tilt, and each is
+// written in its tile's frame (the nearest texel's for the gutter) as
+// normalize(tilt.tangent, tilt.bitangent, 1): across an edge both tiles hold
+// the same relief. The formula texturedSurface uses.
 RgbaImage bakeNormalMap(const Atlas& atlas, const DisplayAtlas& display,
                         const std::vector<float>& paddedHeight, const TexelFrames& frames,
                         float relief);
