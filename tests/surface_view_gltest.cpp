@@ -20,6 +20,8 @@
 
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/output/colormap.hpp"
+#include "core/session/session.hpp"
 #include "core/surface/display_atlas.hpp"
 #include "core/surface/surface_glb.hpp"
 #include "gl/surface_view.hpp"
@@ -354,4 +356,43 @@ TEST(SurfaceGlb, ReloadsWithTheSameMeshTexturesAndLook) {
     // Unwritable: InputError, and nothing left behind.
     EXPECT_THROW(exportSurfaceGlb(tiles, field, colours, "/nonexistent-folder/x.glb"), InputError);
     EXPECT_THROW(readTexturedGlb(path + ".missing"), InputError);
+}
+
+// Not a check: grows a preset on a cube sphere and draws it (run with
+// --gtest_also_run_disabled_tests and MORPHOGEN_TEST_SHOTS set; PNGs and a GLB).
+TEST(SurfaceView, DISABLED_DemoPatterns) {
+    test::glContext();
+    const char* folder = std::getenv("MORPHOGEN_TEST_SHOTS");
+    ASSERT_TRUE(folder && *folder) << "set MORPHOGEN_TEST_SHOTS";
+    for (const std::string preset : {"turk_large_spots", "gs_coral"}) {
+        const SurfaceTiles tiles = test::cubeSphereTiles(48);
+        Session s = loadPreset(preset);
+        useAtlas(s, tiles.atlas);
+        const State state = test::runCpu(s);
+        const int chemical = colormapChemical(s.colormap, s.reactionModel());
+        ColorMapSpec spec = s.colormap;
+        if (spec.name == "grey")
+            spec.name = "magma";
+        const std::vector<float> rgb = applyColormap(state, chemical, spec);
+        std::vector<std::array<std::uint8_t, 4>> colours(state.cellCount());
+        std::vector<float> height(state.cellCount());
+        for (std::size_t c = 0; c < colours.size(); ++c) {
+            colours[c] = {toUnorm8(rgb[c * 3]), toUnorm8(rgb[c * 3 + 1]), toUnorm8(rgb[c * 3 + 2]),
+                          255};
+            height[c] = state.plane(chemical)[c];
+        }
+        const gl::SurfaceRenderer renderer(texturedSurface(tiles, height, colours));
+        gl::ViewOptions view;
+        view.width = 480;
+        view.height = 360;
+        keep(renderer.render(view), "demo_" + preset);
+        view.azimuth = 45;
+        view.elevation = 35.26;
+        keep(renderer.render(view), "demo_" + preset + "_corner");
+        SurfaceLook flat;
+        flat.bump = 0;
+        keep(gl::SurfaceRenderer(texturedSurface(tiles, height, colours, flat)).render(view),
+             "demo_" + preset + "_corner_flat");
+        exportSurfaceGlb(tiles, height, colours, std::string(folder) + "/demo_" + preset + ".glb");
+    }
 }
