@@ -1,0 +1,258 @@
+// GLB output of a textured surface through tinygltf; the PNG images are
+// encoded here (stb_image_write, which tinygltf itself uses) so they can live
+// in buffer views with a MIME type rather than as base64 data URIs.
+
+#include "core/surface/surface_glb.hpp"
+
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+
+#include <stb/stb_image_write.h>
+#include <tiny_gltf.h>
+
+#include "core/base/errors.hpp"
+#include "core/mesh/mesh_io.hpp"
+
+namespace morphogen {
+
+namespace {
+
+int addView(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {
+    std::vector<unsigned char>& data = model.buffers[0].data;
+    while (data.size() % 4 != 0)
+        data.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = data.size();
+    view.byteLength = size;
+    view.target = target;
+    const auto* p = static_cast<const unsigned char*>(bytes);
+    data.insert(data.end(), p, p + size);
+    model.bufferViews.push_back(view);
+    return int(model.bufferViews.size() - 1);
+}
+
+int addAccessor(tinygltf::Model& model, int view, int componentType, int type, std::size_t count) {
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.componentType = componentType;
+    a.type = type;
+    a.count = count;
+    model.accessors.push_back(a);
+    return int(model.accessors.size() - 1);
+}
+
+void appendBytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    const auto* p = static_cast<const unsigned char*>(data);
+    out->insert(out->end(), p, p + size);
+}
+
+// An image as a PNG in the binary chunk, and a texture using it.
+int addPngTexture(tinygltf::Model& model, const RgbaImage& image, const std::string& name) {
+    std::vector<unsigned char> png;
+    if (image.width < 1 || image.height < 1 ||
+        !stbi_write_png_to_func(appendBytes, &png, image.width, image.height, 4,
+                                image.texels.data(), image.width * 4))
+        throw std::runtime_error("writeTexturedGlb: could not encode the " + name + " PNG");
+    tinygltf::Image gltfImage;
+    gltfImage.name = name;
+    gltfImage.mimeType = "image/png";
+    gltfImage.bufferView = addView(model, png.data(), png.size(), 0);
+    model.images.push_back(gltfImage);
+    tinygltf::Texture texture;
+    texture.name = name;
+    texture.sampler = 0;
+    texture.source = int(model.images.size() - 1);
+    model.textures.push_back(texture);
+    return int(model.textures.size() - 1);
+}
+
+// The accessor's elements as floats, N per element; InputError unless it is
+// N-component float data inside its buffer.
+std::vector<float> floats(const tinygltf::Model& model, int index, int type, int n,
+                          const std::string& path, const std::string& what) {
+    if (index < 0 || std::size_t(index) >= model.accessors.size())
+        throw InputError(path + ": no " + what + " accessor");
+    const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != type || a.bufferView < 0 ||
+        std::size_t(a.bufferView) >= model.bufferViews.size())
+        throw InputError(path + ": " + what + " is not float data of " + std::to_string(n) +
+                         " components in a buffer view");
+    const tinygltf::BufferView& view = model.bufferViews[std::size_t(a.bufferView)];
+    const std::size_t stride = view.byteStride ? view.byteStride : sizeof(float) * n;
+    const std::vector<unsigned char>& data = model.buffers.at(std::size_t(view.buffer)).data;
+    if (a.count > 0 &&
+        (view.byteOffset + view.byteLength > data.size() ||
+         a.byteOffset + (a.count - 1) * stride + sizeof(float) * n > view.byteLength))
+        throw InputError(path + ": " + what + " runs past its buffer");
+    std::vector<float> out(a.count * std::size_t(n));
+    for (std::size_t i = 0; i < a.count; ++i)
+        std::memcpy(&out[i * n], &data[view.byteOffset + a.byteOffset + i * stride],
+                    sizeof(float) * n);
+    return out;
+}
+
+RgbaImage textureImage(const tinygltf::Model& model, int textureIndex, const std::string& path,
+                       const std::string& what) {
+    if (textureIndex < 0 || std::size_t(textureIndex) >= model.textures.size())
+        throw InputError(path + ": the material has no " + what);
+    const int source = model.textures[std::size_t(textureIndex)].source;
+    if (source < 0 || std::size_t(source) >= model.images.size())
+        throw InputError(path + ": the " + what + " has no image");
+    const tinygltf::Image& im = model.images[std::size_t(source)];
+    if (im.bits != 8 || (im.component != 3 && im.component != 4) ||
+        im.image.size() != std::size_t(im.width) * im.height * im.component)
+        throw InputError(path + ": the " + what + " is not an 8-bit RGB or RGBA image");
+    RgbaImage out;
+    out.width = im.width;
+    out.height = im.height;
+    out.texels.resize(std::size_t(im.width) * im.height);
+    for (std::size_t p = 0; p < out.texels.size(); ++p)
+        for (int k = 0; k < 4; ++k)
+            out.texels[p][std::size_t(k)] =
+                k < im.component ? im.image[p * im.component + std::size_t(k)] : 255;
+    return out;
+}
+
+} // namespace
+
+void writeTexturedGlb(const TexturedMesh& mesh, const std::string& path) {
+    const std::size_t n = mesh.positions.size();
+    if (mesh.normals.size() != n || mesh.tangents.size() != n || mesh.uvs.size() != n)
+        throw std::invalid_argument("writeTexturedGlb: every vertex needs a normal, a tangent "
+                                    "and a texture coordinate");
+
+    tinygltf::Model model;
+    model.asset.version = "2.0";
+    model.asset.generator = "morphogen";
+    model.buffers.emplace_back();
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.indices = addAccessor(
+        model,
+        addView(model, mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]),
+                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+        TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, 3 * mesh.triangles.size());
+    auto attribute = [&](const char* name, const void* data, std::size_t elementSize, int type) {
+        const int view = addView(model, data, n * elementSize, TINYGLTF_TARGET_ARRAY_BUFFER);
+        const int accessor = addAccessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, type, n);
+        prim.attributes[name] = accessor;
+        return accessor;
+    };
+    const int positions =
+        attribute("POSITION", mesh.positions.data(), sizeof(Eigen::Vector3f), TINYGLTF_TYPE_VEC3);
+    // POSITION's min and max are required by the specification.
+    const Bounds box = boundsOf(mesh.positions);
+    model.accessors[std::size_t(positions)].minValues = {box.min.x(), box.min.y(), box.min.z()};
+    model.accessors[std::size_t(positions)].maxValues = {box.max.x(), box.max.y(), box.max.z()};
+    attribute("NORMAL", mesh.normals.data(), sizeof(Eigen::Vector3f), TINYGLTF_TYPE_VEC3);
+    attribute("TEXCOORD_0", mesh.uvs.data(), sizeof(Eigen::Vector2f), TINYGLTF_TYPE_VEC2);
+    attribute("TANGENT", mesh.tangents.data(), sizeof(Eigen::Vector4f), TINYGLTF_TYPE_VEC4);
+
+    tinygltf::Sampler sampler;
+    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    model.samplers.push_back(sampler);
+    tinygltf::Material material;
+    material.name = "pattern";
+    material.pbrMetallicRoughness.baseColorTexture.index =
+        addPngTexture(model, mesh.baseColour, "base colour");
+    material.pbrMetallicRoughness.metallicFactor = 0.0;
+    material.pbrMetallicRoughness.roughnessFactor = 0.7;
+    material.normalTexture.index = addPngTexture(model, mesh.normalMap, "normal map");
+    // Open surfaces show their back.
+    material.doubleSided = true;
+    model.materials.push_back(material);
+    prim.material = 0;
+    while (model.buffers[0].data.size() % 4 != 0)
+        model.buffers[0].data.push_back(0);
+
+    tinygltf::Mesh gltfMesh;
+    gltfMesh.name = "surface";
+    gltfMesh.primitives.push_back(prim);
+    model.meshes.push_back(gltfMesh);
+    tinygltf::Node node;
+    node.mesh = 0;
+    model.nodes.push_back(node);
+    tinygltf::Scene scene;
+    scene.nodes = {0};
+    model.scenes.push_back(scene);
+    model.defaultScene = 0;
+
+    std::ostringstream bytes;
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&model, bytes, false, true))
+        throw InputError(path + ": could not encode the GLB");
+    writeFileAtomically(path, bytes.str());
+}
+
+void exportSurfaceGlb(const SurfaceTiles& tiles, const std::vector<float>& height,
+                      const std::vector<std::array<std::uint8_t, 4>>& colours,
+                      const std::string& path, const SurfaceLook& look) {
+    writeTexturedGlb(texturedSurface(tiles, height, colours, look), path);
+}
+
+TexturedMesh readTexturedGlb(const std::string& path) {
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string error, warning;
+    if (!loader.LoadBinaryFromFile(&model, &error, &warning, path))
+        throw InputError(path + ": not a readable GLB (" + error + ")");
+    if (model.meshes.size() != 1 || model.meshes[0].primitives.size() != 1)
+        throw InputError(path + ": expected one mesh of one primitive");
+    const tinygltf::Primitive& prim = model.meshes[0].primitives[0];
+    auto attribute = [&](const char* name) {
+        const auto it = prim.attributes.find(name);
+        return it == prim.attributes.end() ? -1 : it->second;
+    };
+    TexturedMesh mesh;
+    const std::vector<float> p =
+        floats(model, attribute("POSITION"), TINYGLTF_TYPE_VEC3, 3, path, "POSITION");
+    const std::vector<float> nrm =
+        floats(model, attribute("NORMAL"), TINYGLTF_TYPE_VEC3, 3, path, "NORMAL");
+    const std::vector<float> uv =
+        floats(model, attribute("TEXCOORD_0"), TINYGLTF_TYPE_VEC2, 2, path, "TEXCOORD_0");
+    const std::vector<float> tan =
+        floats(model, attribute("TANGENT"), TINYGLTF_TYPE_VEC4, 4, path, "TANGENT");
+    const std::size_t n = p.size() / 3;
+    if (nrm.size() != 3 * n || uv.size() != 2 * n || tan.size() != 4 * n)
+        throw InputError(path + ": the attributes have different vertex counts");
+    for (std::size_t i = 0; i < n; ++i) {
+        mesh.positions.emplace_back(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+        mesh.normals.emplace_back(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]);
+        mesh.uvs.emplace_back(uv[2 * i], uv[2 * i + 1]);
+        mesh.tangents.emplace_back(tan[4 * i], tan[4 * i + 1], tan[4 * i + 2], tan[4 * i + 3]);
+    }
+
+    if (prim.indices < 0 || std::size_t(prim.indices) >= model.accessors.size())
+        throw InputError(path + ": the primitive has no indices");
+    const tinygltf::Accessor& ia = model.accessors[std::size_t(prim.indices)];
+    if (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT || ia.count % 3 != 0 ||
+        ia.bufferView < 0 || std::size_t(ia.bufferView) >= model.bufferViews.size())
+        throw InputError(path + ": the indices are not uint32 triangles");
+    const tinygltf::BufferView& iv = model.bufferViews[std::size_t(ia.bufferView)];
+    const std::vector<unsigned char>& data = model.buffers.at(std::size_t(iv.buffer)).data;
+    if (iv.byteOffset + ia.byteOffset + ia.count * 4 > data.size() ||
+        ia.byteOffset + ia.count * 4 > iv.byteLength)
+        throw InputError(path + ": the indices run past their buffer");
+    mesh.triangles.resize(ia.count / 3);
+    std::memcpy(mesh.triangles.data(), &data[iv.byteOffset + ia.byteOffset], ia.count * 4);
+    for (const auto& t : mesh.triangles)
+        for (const std::uint32_t v : t)
+            if (v >= n)
+                throw InputError(path + ": vertex index " + std::to_string(v) + " out of range");
+
+    if (prim.material < 0 || std::size_t(prim.material) >= model.materials.size())
+        throw InputError(path + ": the primitive has no material");
+    const tinygltf::Material& material = model.materials[std::size_t(prim.material)];
+    mesh.baseColour = textureImage(model, material.pbrMetallicRoughness.baseColorTexture.index,
+                                   path, "base colour texture");
+    mesh.normalMap = textureImage(model, material.normalTexture.index, path, "normal texture");
+    return mesh;
+}
+
+} // namespace morphogen
