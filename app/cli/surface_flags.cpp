@@ -57,7 +57,7 @@ void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
         ->group(group);
     cmd.add_option("--view", f.view,
                    "camera: AZIMUTH,ELEVATION[,DISTANCE] in degrees and bounding-sphere radii "
-                   "(default 30,20,2.6)")
+                   "(default 30,20,0: 0 frames the model)")
         ->group(group);
     cmd.add_option("--resolution", f.resolution, "screenshot size WxH (default 1024x1024)")
         ->group(group);
@@ -107,10 +107,15 @@ void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
                              "': expected AZIMUTH,ELEVATION[,DISTANCE] (e.g. 30,20 or 45,10,3)");
         spec.view.azimuth = numberFlag("--view azimuth", parts[0], -360, 360);
         spec.view.elevation = numberFlag("--view elevation", parts[1], -90, 90);
-        if (parts.size() == 3)
-            spec.view.distance =
-                numberFlag("--view distance", parts[2], kMinViewDistance, kMaxViewDistance,
-                           " (bounding-sphere radii from the model's centre)");
+        if (parts.size() == 3) {
+            spec.view.distance = numberFlag("--view distance", parts[2], 0, kMaxViewDistance,
+                                            " (bounding-sphere radii from the model's centre; 0 "
+                                            "frames the model)");
+            if (spec.view.distance != 0 && spec.view.distance < kMinViewDistance)
+                throw InputError("--view distance '" + parts[2] + "': accepted are 0 (framed) or " +
+                                 std::to_string(kMinViewDistance) + ".." +
+                                 std::to_string(kMaxViewDistance) + " bounding-sphere radii");
+        }
     }
     if (!f.resolution.empty()) {
         const std::size_t x = f.resolution.find('x');

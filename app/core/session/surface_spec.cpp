@@ -21,7 +21,12 @@ SurfaceView viewFromJson(const FieldReader& surface, const nlohmann::json& block
     SurfaceView view;
     view.azimuth = reader.number("azimuth", view.azimuth, -360, 360);
     view.elevation = reader.number("elevation", view.elevation, -90, 90);
-    view.distance = reader.number("distance", view.distance, kMinViewDistance, kMaxViewDistance);
+    view.distance = reader.number("distance", view.distance, 0, kMaxViewDistance);
+    if (view.distance != 0 && view.distance < kMinViewDistance)
+        reader.failField("distance",
+                         "is " + std::to_string(view.distance) + ", accepted are 0 (framed) or " +
+                             std::to_string(kMinViewDistance) + ".." +
+                             std::to_string(kMaxViewDistance) + " bounding-sphere radii");
     if (const nlohmann::json* resolution = reader.find("resolution")) {
         const std::string expected = "must be an array [width, height] of integers in " +
                                      std::to_string(kMinViewSide) + ".." +

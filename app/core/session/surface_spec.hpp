@@ -20,11 +20,12 @@ std::string surfaceScaleByNames();
 
 // The camera of a surface screenshot: it looks at the model's bounding-sphere
 // centre from `azimuth` degrees around the vertical (+y) axis and `elevation`
-// degrees above the horizontal plane, at `distance` bounding-sphere radii.
+// degrees above the horizontal plane, at `distance` bounding-sphere radii
+// (0: framed, the sphere just fits the picture).
 struct SurfaceView {
     double azimuth = 30;
     double elevation = 20;
-    double distance = 2.6;
+    double distance = 0;
     int width = 1024;
     int height = 1024;
     int turntable = 0; // frames around the model (0: one picture)
