@@ -390,6 +390,8 @@ std::optional<std::string> GpuSimulator::insaneValue(const ReactionModel& model)
 
 void GpuSimulator::setActiveTiles(const std::vector<int>& tiles) {
     const std::vector<int> sorted = checkActiveTiles(m_k.domain, tiles);
+    // A tile leaving the set may hold different values in the two targets.
+    m_pingPong.currentChanged();
     m_activeRects.clear();
     if (sorted.empty())
         return;

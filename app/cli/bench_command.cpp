@@ -407,7 +407,8 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--convergence-size", flags->convergenceSize,
                     "grid size for time-to-converged-pattern (default 1024)");
     cmd->add_flag("--no-convergence", flags->noConvergence, "skip time-to-converged-pattern");
-    cmd->add_flag("--no-domains", flags->noDomains, "skip the atlas and batched-sweep rows");
+    cmd->add_flag("--no-domains", flags->noDomains,
+                  "skip the atlas, localized-RD and batched-sweep rows");
     cmd->add_option("--memory-sizes", flags->memorySizes,
                     "sizes of the peak-memory renders, one process each (default 1024,2048,4096)");
     cmd->add_flag("--no-memory", flags->noMemory, "skip the peak-memory rows");

@@ -9,7 +9,7 @@
 
 namespace morphogen {
 
-void checkAtlasWeights(const Atlas& atlas, const AtlasWeights& weights) {
+void checkAtlasWeightSizes(const Atlas& atlas, const AtlasWeights& weights) {
     const std::size_t cells = atlas.cellCount();
     if (weights.coefficients.size() != cells || weights.area.size() != cells)
         throw InputError("atlas weights: " + std::to_string(weights.coefficients.size()) +
@@ -17,6 +17,11 @@ void checkAtlasWeights(const Atlas& atlas, const AtlasWeights& weights) {
                          " area entries for an atlas of " + std::to_string(atlas.width()) + " x " +
                          std::to_string(atlas.height()) + " = " + std::to_string(cells) +
                          " cells (accepted: one entry per atlas cell in both)");
+}
+
+void checkAtlasWeights(const Atlas& atlas, const AtlasWeights& weights) {
+    checkAtlasWeightSizes(atlas, weights);
+    const std::size_t cells = atlas.cellCount();
     const auto bad = [](float v) { return !std::isfinite(v) || v < 0.0f; };
     for (std::size_t i = 0; i < cells; ++i) {
         const auto& c = weights.coefficients[i];

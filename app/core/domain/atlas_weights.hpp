@@ -25,6 +25,8 @@ struct AtlasWeights {
 // Throws InputError unless `weights` fits `atlas`: one entry per atlas cell in
 // both vectors, every coefficient and area finite and >= 0.
 void checkAtlasWeights(const Atlas& atlas, const AtlasWeights& weights);
+// Only the sizes (constant time, for every Domain made from a session).
+void checkAtlasWeightSizes(const Atlas& atlas, const AtlasWeights& weights);
 
 // Every used texel's four coefficients `coefficient` and area 1 (unused: 0):
 // the unweighted atlas.

@@ -45,8 +45,9 @@ Domain Domain::atlas(std::shared_ptr<const Atlas> atlas) {
 
 Domain Domain::atlas(std::shared_ptr<const Atlas> atlas,
                      std::shared_ptr<const AtlasWeights> weights) {
+    // Sizes only: a session's domain is made often, and useAtlas checked the values.
     if (weights)
-        checkAtlasWeights(*atlas, *weights);
+        checkAtlasWeightSizes(*atlas, *weights);
     Domain d = Domain::atlas(std::move(atlas));
     d.m_weights = std::move(weights);
     return d;

@@ -72,7 +72,8 @@ public:
     static Domain atlas(std::shared_ptr<const Atlas> atlas);
     // An atlas with per-texel diffusion weights (atlas_weights.hpp): every
     // used texel's Laplacian is the weighted 5-point one. Null weights: the
-    // plain atlas. Throws InputError for weights that do not fit the atlas.
+    // plain atlas. Throws InputError for weights of the wrong size (useAtlas
+    // checks their values too).
     static Domain atlas(std::shared_ptr<const Atlas> atlas,
                         std::shared_ptr<const AtlasWeights> weights);
 
