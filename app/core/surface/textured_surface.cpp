@@ -60,34 +60,40 @@ Eigen::Vector4f gridTangent(const SurfaceTiles& tiles, int tile, int i, int j) {
 } // namespace
 
 RgbaImage bakeNormalMap(const Atlas& atlas, const DisplayAtlas& display,
-                        const std::vector<float>& paddedHeight, const TexelFrames& frames,
-                        float relief) {
+                        const std::vector<float>& height, const TexelFrames& frames, float relief) {
     const int n = display.tileSize();
     // Per cell, the normal's tilt in world space, -relief times the surface
-    // gradient: central differences of the padded height (the gutter supplies
-    // the texels across the tile's edges) give the slope per texel, and
-    // J (J^T J)^-1 slope is the gradient (texels need not be square or
-    // right-angled).
+    // gradient g: the least-squares fit h(q) - h(p) = g . (q - p) over the
+    // four neighbours q (through the connectivity, across tile edges), with
+    // g in the tangent plane and the offsets q - p taken in it. It needs no
+    // regular grid: skewed texels and the kinks where tiles meet at an
+    // irregular corner are measured, not assumed, and a height linear on the
+    // surface gives its exact gradient.
     std::vector<float> tilt(atlas.cellCount() * 3, 0.0f);
-    for (int t = 0; t < display.tileCount(); ++t) {
-        auto h = [&](int u, int v) {
-            const std::array<int, 2> xy = display.texel(t, u, v);
-            return paddedHeight[std::size_t(xy[1]) * display.width() + xy[0]];
-        };
-        for (int v = 0; v < n; ++v)
-            for (int u = 0; u < n; ++u) {
-                const std::uint32_t cell = atlas.tileCell(t, u, v);
-                const Eigen::Vector2f slope(0.5f * (h(u + 1, v) - h(u - 1, v)),
-                                            0.5f * (h(u, v + 1) - h(u, v - 1)));
-                Eigen::Matrix<float, 3, 2> J;
-                J << frames.jacobianU[cell], frames.jacobianV[cell];
-                const Eigen::Matrix2f metric = J.transpose() * J;
-                Eigen::Vector3f gradient = Eigen::Vector3f::Zero();
-                if (std::abs(metric.determinant()) > 1e-12f * metric.trace() * metric.trace())
-                    gradient = J * (metric.inverse() * slope);
-                for (int k = 0; k < 3; ++k)
-                    tilt[std::size_t(cell) * 3 + std::size_t(k)] = -relief * gradient[k];
-            }
+    constexpr Direction kDirections[4] = {Direction::PlusX, Direction::PlusY, Direction::MinusX,
+                                          Direction::MinusY};
+    for (std::uint32_t cell = 0; cell < atlas.cellCount(); ++cell) {
+        if (!atlas.used(cell))
+            continue;
+        const Eigen::Vector3f& T = frames.tangent[cell];
+        const Eigen::Vector3f& B = frames.bitangent[cell];
+        Eigen::Matrix2f normal = Eigen::Matrix2f::Zero();
+        Eigen::Vector2f rhs = Eigen::Vector2f::Zero();
+        for (const Direction d : kDirections) {
+            const std::uint32_t q = atlas.step(cell, d).cell;
+            if (q == cell) // an open edge
+                continue;
+            const Eigen::Vector3f offset = frames.centre[q] - frames.centre[cell];
+            const Eigen::Vector2f x(offset.dot(T), offset.dot(B));
+            normal += x * x.transpose();
+            rhs += x * (height[q] - height[cell]);
+        }
+        if (std::abs(normal.determinant()) <= 1e-12f * normal.trace() * normal.trace())
+            continue;
+        const Eigen::Vector2f g = normal.inverse() * rhs;
+        const Eigen::Vector3f t = -relief * (g.x() * T + g.y() * B);
+        for (int k = 0; k < 3; ++k)
+            tilt[std::size_t(cell) * 3 + std::size_t(k)] = t[k];
     }
     // Padded like the colours, so a gutter texel holds its neighbour's tilt
     // itself, then written in the tile's frame at its nearest texel (the
@@ -125,6 +131,7 @@ TexelFrames texelFrames(const SurfaceTiles& tiles) {
     frames.tangent.assign(atlas.cellCount(), zero);
     frames.bitangent.assign(atlas.cellCount(), zero);
     frames.normal.assign(atlas.cellCount(), zero);
+    frames.centre.assign(atlas.cellCount(), zero);
     double sum = 0;
     for (int t = 0; t < atlas.tileCount(); ++t) {
         const std::size_t base = perTile * std::size_t(t);
@@ -160,6 +167,8 @@ TexelFrames texelFrames(const SurfaceTiles& tiles) {
                 frames.tangent[cell] = tangent;
                 frames.bitangent[cell] = bitangent;
                 frames.normal[cell] = normal;
+                frames.centre[cell] =
+                    0.25f * (pos(u, v) + pos(u + 1, v) + pos(u, v + 1) + pos(u + 1, v + 1));
                 sum += double(pu.norm()) + double(pv.norm());
             }
     }
@@ -231,13 +240,12 @@ TexturedMesh texturedSurface(const SurfaceTiles& tiles, const std::vector<float>
     mesh.baseColour.width = display.width();
     mesh.baseColour.height = display.height();
     mesh.baseColour.texels = display.pad(colours);
-    const std::vector<float> padded =
-        display.pad(height.empty() ? std::vector<float>(atlas.cellCount(), 0.0f)
-                                   : normalisedHeight(atlas, height),
-                    1);
     const TexelFrames frames = texelFrames(tiles);
-    mesh.normalMap = bakeNormalMap(atlas, display, padded, frames,
-                                   height.empty() ? 0.0f : look.bump * frames.meanTexelLength);
+    mesh.normalMap =
+        bakeNormalMap(atlas, display,
+                      height.empty() ? std::vector<float>(atlas.cellCount(), 0.0f)
+                                     : normalisedHeight(atlas, height),
+                      frames, height.empty() ? 0.0f : look.bump * frames.meanTexelLength);
     return mesh;
 }
 

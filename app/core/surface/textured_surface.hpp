@@ -65,22 +65,22 @@ TexturedMesh texturedSurface(const SurfaceTiles& tiles, const std::vector<float>
 // rebuilds it from the vertex tangents).
 struct TexelFrames {
     std::vector<Eigen::Vector3f> jacobianU, jacobianV, tangent, bitangent, normal;
-    float meanTexelLength = 0; // over every texel edge
+    std::vector<Eigen::Vector3f> centre; // the mean of the texel's four corners
+    float meanTexelLength = 0;           // over every texel edge
 };
 TexelFrames texelFrames(const SurfaceTiles& tiles);
 
-// The tangent-space normal map of a padded height image (already padded by
-// `display`, row 0 first). Per cell, central differences give the height's
-// slope per texel, J (J^T J)^-1 turns it into the surface gradient g, and the
-// normal tilts by -relief g, `relief` being the height's world-unit amplitude
-// (Blinn's bump mapping, Turk 1991 "Rendering"). The tilts are padded like
-// the colours, so a gutter texel holds its neighbour's own tilt, and each is
-// written in its tile's frame (the nearest texel's for the gutter) as
-// normalize(tilt.tangent, tilt.bitangent, 1): across an edge both tiles hold
-// the same relief. The formula texturedSurface uses.
+// The tangent-space normal map of a per-cell height: the normal tilts by
+// -relief g, g the height's surface gradient (least squares over each
+// texel's four neighbours through the atlas connectivity, in the tangent
+// plane) and `relief` the height's world-unit amplitude (Blinn's bump
+// mapping, Turk 1991 "Rendering"). The tilts are padded like the colours, so
+// a gutter texel holds its neighbour's own tilt, and each is written in its
+// tile's frame (the nearest texel's for the gutter) as normalize(tilt.tangent,
+// tilt.bitangent, 1): across an edge both tiles hold the same relief. The
+// formula texturedSurface uses.
 RgbaImage bakeNormalMap(const Atlas& atlas, const DisplayAtlas& display,
-                        const std::vector<float>& paddedHeight, const TexelFrames& frames,
-                        float relief);
+                        const std::vector<float>& height, const TexelFrames& frames, float relief);
 
 // Centre and radius of a sphere round every position (the bounding box's
 // centre and the farthest position from it).
