@@ -234,6 +234,29 @@ TEST(SessionLimits, DiffusionMapsAndTilesRoundTripAtTheirLimits) {
                     "tiles_sweep");
 }
 
+TEST(SessionLimits, SurfaceBlocksRoundTripAtTheirLimits) {
+    for (const bool maximum : {false, true}) {
+        const json surface = {
+            {"mesh", maximum ? "models/meshes/torus.obj" : "sample:sphere"},
+            {"tile_size", maximum ? kMaxSurfaceTileSize : kMinSurfaceTileSize},
+            {"tiles", maximum ? kMaxSurfaceTiles : kMinSurfaceTiles},
+            {"metric_correction", !maximum},
+            {"scale",
+             {{"by", "mean_curvature"}, {"strength", maximum ? kMaxSurfaceScaleStrength : 0.0}}},
+            {"view",
+             {{"azimuth", maximum ? 360 : -360},
+              {"elevation", maximum ? 90 : -90},
+              {"distance", maximum ? kMaxViewDistance : kMinViewDistance},
+              {"resolution", {maximum ? kMaxViewSide : kMinViewSide, kMinViewSide}},
+              {"turntable", maximum ? kMaxTurntableFrames : 0}}}};
+        expectRoundTrip({{"model", "gray_scott"}, {"length", 64}, {"surface", surface}},
+                        maximum ? "surface_maximum" : "surface_minimum");
+    }
+    // Automatic tile size and budget are written as 0 and read back as automatic.
+    expectRoundTrip({{"model", "turing_turk"}, {"surface", {{"mesh", "sample:torus"}}}},
+                    "surface_defaults");
+}
+
 // What a session may not hold, refused by the reader with the field named.
 TEST(SessionLimits, ValuesPastTheLimitsAreRefusedNamingTheField) {
     struct Case {
@@ -266,6 +289,16 @@ TEST(SessionLimits, ValuesPastTheLimitsAreRefusedNamingTheField) {
         {{{"schedule", {{{"size", 8}, {"steps", kMaxSteps}}, {{"size", 16}, {"steps", 1}}}}},
          "levels add up to 100000001 steps"},
         {{{"size", 16}, {"tiles", {{"grid", {32, 32}}}}}, "must split the 16 x 16 grid evenly"},
+        {{{"surface", {{"tiles", 10}}}}, "field 'surface.mesh' is missing"},
+        {{{"surface", {{"mesh", "a.obj"}, {"tile_size", 2}}}},
+         "field 'surface.tile_size' is 2, accepted are 0 (automatic) or 4..64"},
+        {{{"surface", {{"mesh", "a.obj"}, {"tiles", kMaxSurfaceTiles + 1}}}},
+         "field 'surface.tiles' is 100001, accepted range is [0, 100000]"},
+        {{{"surface", {{"mesh", "a.obj"}, {"view", {{"resolution", {8, 8}}}}}}},
+         "field 'surface.view.resolution' must be an array [width, height] of integers in "
+         "16..8192, got 8"},
+        {{{"surface", {{"mesh", "a.obj"}, {"scale", {{"by", "height"}}}}}},
+         "field 'surface.scale.by' is 'height', accepted: none, mean_curvature"},
         {{{"stages", {{{"steps", 1}, {"reset", {{"u", 1}}}}}}},
          "'stages[0].reset' needs frozen cells"},
         {{{"diffusion", {{"type", "generalized"}, {"tensors", {{"u", "xx=1e308"}, {"v", "a"}}}}}},

@@ -87,4 +87,18 @@ constexpr long long kMaxSurfaceTexels = 32LL * 1024 * 1024;
 // `bench --seconds`: time per measurement.
 constexpr double kMaxBenchSeconds = 600.0;
 
+// Surfaces (a session's "surface" block): texels per tile side, the tile
+// budget, the screenshot's sides and turntable frames, the camera distance in
+// bounding-sphere radii and the curvature scaling's strength.
+constexpr int kMinSurfaceTileSize = 4;
+constexpr int kMaxSurfaceTileSize = 64;
+constexpr int kMinSurfaceTiles = 3;
+constexpr int kMaxSurfaceTiles = 100000;
+constexpr int kMinViewSide = 16;
+constexpr int kMaxViewSide = 8192;
+constexpr int kMaxTurntableFrames = 3600;
+constexpr double kMinViewDistance = 1.05;
+constexpr double kMaxViewDistance = 100.0;
+constexpr double kMaxSurfaceScaleStrength = 100.0;
+
 } // namespace morphogen

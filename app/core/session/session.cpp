@@ -316,14 +316,14 @@ ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const Reac
 
 Session sessionFromJson(const json& root, const std::string& source) {
     FieldReader top(root, source, "");
-    top.rejectUnknown({"name",          "description", "model",
-                       "params",        "size",        "edges",
-                       "diffusion",     "integrator",  "relaxation_passes",
-                       "jacobi_sweeps", "schedule",    "stages",
-                       "param_maps",    "tiles",       "dt",
-                       "steps",         "seed",        "init",
-                       "colormap",      "height",      "length",
-                       "coarse_to_fine"});
+    top.rejectUnknown({"name",           "description", "model",
+                       "params",         "size",        "edges",
+                       "diffusion",      "integrator",  "relaxation_passes",
+                       "jacobi_sweeps",  "schedule",    "stages",
+                       "param_maps",     "tiles",       "dt",
+                       "steps",          "seed",        "init",
+                       "colormap",       "height",      "length",
+                       "coarse_to_fine", "surface"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");
@@ -376,6 +376,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
         s.colormap = colormapFromJson(top, *cm, s.outputModel(), &s.outputModel() != model);
     if (const json* height = top.find("height"))
         s.heightMaps = heightSpecFromJson(top, *height);
+    if (const json* surface = top.find("surface"))
+        s.surface = surfaceSpecFromJson(top, *surface);
     return s;
 }
 
@@ -428,6 +430,8 @@ json sessionToJson(const Session& s) {
     j["colormap"] = cm;
     if (s.heightMaps != HeightSpec{})
         j["height"] = heightSpecToJson(s.heightMaps);
+    if (s.surface.active())
+        j["surface"] = surfaceSpecToJson(s.surface);
     return j;
 }
 

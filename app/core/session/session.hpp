@@ -18,6 +18,7 @@
 #include "core/session/cascade.hpp"
 #include "core/session/height_spec.hpp"
 #include "core/session/param_map.hpp"
+#include "core/session/surface_spec.hpp"
 #include "core/session/tile_grid.hpp"
 
 namespace morphogen {
@@ -98,6 +99,9 @@ struct Session {
     ColorMapSpec colormap;
     // Height, normal and mask maps of a texture set ("height").
     HeightSpec heightMaps;
+    // Grow the pattern on a mesh's surface instead of the flat canvas (the
+    // "surface" block; inactive by default).
+    SurfaceSpec surface;
     // Folder that relative paths in the session (images) resolve against; set
     // by loadSessionFile, not serialised.
     std::string baseDir;
