@@ -359,6 +359,7 @@ TEST(SurfaceWeights, CurvatureScaleShrinksFeaturesWhereCurved) {
 
     EXPECT_THROW(curvatureScale(sphere, -1.0), InputError);
     EXPECT_THROW(curvatureScale(sphere, std::nan("")), InputError);
+    EXPECT_THROW(curvatureScale(sphere, 101.0), InputError);
     std::vector<float> wrongSize(3, 1.0f);
     EXPECT_THROW(surfaceWeights(sphere, {1.0, true, &wrongSize}), InputError);
     EXPECT_THROW(surfaceWeights(sphere, {0.0}), InputError);
