@@ -293,7 +293,7 @@ TEST(SessionLimits, ValuesPastTheLimitsAreRefusedNamingTheField) {
         {{{"surface", {{"mesh", "a.obj"}, {"tile_size", 2}}}},
          "field 'surface.tile_size' is 2, accepted are 0 (automatic) or 4..64"},
         {{{"surface", {{"mesh", "a.obj"}, {"tiles", kMaxSurfaceTiles + 1}}}},
-         "field 'surface.tiles' is 200001, accepted range is [0, 200000]"},
+         "field 'surface.tiles' is 100001, accepted range is [0, 100000]"},
         {{{"surface", {{"mesh", "a.obj"}, {"view", {{"resolution", {8, 8}}}}}}},
          "field 'surface.view.resolution' must be an array [width, height] of integers in "
          "16..8192, got 8"},

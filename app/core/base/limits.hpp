@@ -73,23 +73,20 @@ constexpr int kMaxBlendDepth = 4;
 // Generalized diffusion: the magnitude of a tensor component ("xx=1,...").
 constexpr double kMaxTensorComponent = 1000.0;
 
-// Surface tiles (core/surface): texels per tile side (--tile-size), the tile
-// budget (--tiles; 3 tiles per triangle of the simplified mesh, so at least 3)
-// and the atlas's used texels (tiles x tile size^2, about 100 bytes of
-// geometry and weights each on the CPU). The atlas must also stay under 65536
-// texels on a side (16-bit addresses on the GPU).
-constexpr int kMinSurfaceTileSize = 4;
-constexpr int kMaxSurfaceTileSize = 64;
-constexpr int kMinSurfaceTiles = 3;
-constexpr int kMaxSurfaceTiles = 200000;
-constexpr long long kMaxSurfaceTexels = 32LL * 1024 * 1024;
-
 // `bench --seconds`: time per measurement.
 constexpr double kMaxBenchSeconds = 600.0;
 
-// Surface screenshots and the "surface" block's other numbers: the image's
-// sides, turntable frames, the camera distance in bounding-sphere radii and
-// the curvature scaling's strength.
+// Surfaces (a session's "surface" block): texels per tile side, the tile
+// budget, the screenshot's sides and turntable frames, the camera distance in
+// bounding-sphere radii and the curvature scaling's strength.
+constexpr int kMinSurfaceTileSize = 4;
+constexpr int kMaxSurfaceTileSize = 64;
+constexpr int kMinSurfaceTiles = 3;
+constexpr int kMaxSurfaceTiles = 100000;
+// The atlas's used texels (tiles x tile size^2; about 100 bytes of geometry and
+// weights each on the CPU). The atlas must also stay under 65536 texels on a
+// side (16-bit addresses on the GPU).
+constexpr long long kMaxSurfaceTexels = 32LL * 1024 * 1024;
 constexpr int kMinViewSide = 16;
 constexpr int kMaxViewSide = 8192;
 constexpr int kMaxTurntableFrames = 3600;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/base/errors.hpp"
+#include "core/base/limits.hpp"
 
 namespace morphogen {
 
@@ -100,9 +101,10 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
 }
 
 std::vector<float> curvatureScale(const SurfaceTiles& tiles, double strength) {
-    if (!(strength >= 0) || !std::isfinite(strength))
+    if (!(strength >= 0) || !(strength <= kMaxSurfaceScaleStrength))
         throw InputError("curvature scale: strength " + std::to_string(strength) +
-                         " must be 0 or more (0: no scaling)");
+                         " is out of range: 0 (no scaling) to " +
+                         std::to_string(kMaxSurfaceScaleStrength));
     const Atlas& atlas = *tiles.atlas;
     const std::size_t cells = atlas.cellCount();
     std::vector<double> magnitudes;

@@ -60,7 +60,8 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
 // unused cells and everywhere when the median is 0 (a flat surface). Features
 // shrink where the surface bends more than it typically does: at strength 1
 // a texel of median curvature gets half the size of a flat one. strength 0
-// gives all ones. Throws InputError for a negative or non-finite strength.
+// gives all ones. Throws InputError for a strength outside 0 to
+// kMaxSurfaceScaleStrength (core/base/limits.hpp).
 std::vector<float> curvatureScale(const SurfaceTiles& tiles, double strength);
 
 } // namespace morphogen
