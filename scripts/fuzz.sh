@@ -21,7 +21,10 @@ shift || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(session_fuzzer image_fuzzer cli_fuzzer mesh_fuzzer)
 
-bash scripts/sanitize.sh --build-only
+build_targets=("${targets[@]}")
+[[ " ${targets[*]} " == *" cli_fuzzer "* ]] && build_targets+=(morphogen) # its dictionary
+[[ " ${targets[*]} " == *" image_fuzzer "* ]] && build_targets+=(image_fuzzer_replay)
+bash scripts/sanitize.sh --build-only "${build_targets[@]}"
 build="$root/build-san"
 findings="$build/fuzz-findings"
 mkdir -p "$findings"
@@ -62,7 +65,6 @@ for target in "${targets[@]}"; do
       flags+=(-dict="$scratch/cli.dict") ;;
   esac
   seeds=("$root/fuzz/corpus/$target")
-  [ "$target" = mesh_fuzzer ] && seeds+=("$root/models/meshes") # the samples, as they are
   leak_env=()
   if [ "$target" = image_fuzzer ]; then
     # OpenImageIO leaks on some corrupt files (tests/sanitizers/lsan.supp);

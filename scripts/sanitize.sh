@@ -7,7 +7,9 @@
 #
 #   scripts/sanitize.sh               build, then run the tests (those labelled
 #                                     long excepted: tests/CMakeLists.txt says why)
-#   scripts/sanitize.sh --build-only  build only (scripts/fuzz.sh)
+#   scripts/sanitize.sh --build-only [TARGET...]
+#                                     build only (everything, or the targets
+#                                     named: scripts/fuzz.sh builds its fuzzers)
 #   scripts/sanitize.sh -R session    extra arguments go to ctest
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,8 +31,13 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -g" "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g" \
   -DMORPHOGEN_FUZZ=ON >/dev/null
 echo "==> sanitize: building"
+if [ "$build_only" -eq 1 ]; then
+  targets=()
+  [ $# -gt 0 ] && targets=(--target "$@")
+  cmake --build "$build" --parallel "$(nproc)" "${targets[@]}"
+  exit 0
+fi
 cmake --build "$build" --parallel "$(nproc)"
-[ "$build_only" -eq 1 ] && exit 0
 
 echo "==> sanitize: ctest under ASan + UBSan (without the tests labelled long)"
 cd "$build"
