@@ -38,6 +38,7 @@ struct BenchFlags {
     std::string gpuDevice;
     double seconds = 1.0;
     bool noCpu = false;
+    bool noGpu = false;
     std::string operatorSizes = "512,1024";
     int convergenceSize = 1024;
     bool noConvergence = false;
@@ -353,7 +354,7 @@ void bench(const BenchFlags& f) {
     // The throughput and domain rows measure the GPU on this context; the
     // later sections pick their own backend.
     std::unique_ptr<gl::Context> context;
-    if (!f.noThroughput || !f.noDomains)
+    if (!f.noGpu && (!f.noThroughput || !f.noDomains))
         context = openContext(f, report);
     const bool gpuRows = context != nullptr;
 
@@ -400,6 +401,8 @@ void addBenchCommand(CLI::App& app) {
                     "time per measurement, up to " + std::to_string(int(kMaxBenchSeconds)) +
                         " (default 1)");
     cmd->add_flag("--no-cpu", flags->noCpu, "skip the CPU backend");
+    cmd->add_flag("--no-gpu", flags->noGpu,
+                  "skip the GPU rows of the throughput and domain sections (a software renderer)");
     cmd->add_flag("--no-throughput", flags->noThroughput,
                   "skip the step-throughput and operator rows");
     cmd->add_option("--operator-sizes", flags->operatorSizes,
@@ -408,7 +411,7 @@ void addBenchCommand(CLI::App& app) {
                     "grid size for time-to-converged-pattern (default 1024)");
     cmd->add_flag("--no-convergence", flags->noConvergence, "skip time-to-converged-pattern");
     cmd->add_flag("--no-domains", flags->noDomains,
-                  "skip the atlas, localized-RD and batched-sweep rows");
+                  "skip the atlas, localized-RD (plane and mesh) and batched-sweep rows");
     cmd->add_option("--memory-sizes", flags->memorySizes,
                     "sizes of the peak-memory renders, one process each (default 1024,2048,4096)");
     cmd->add_flag("--no-memory", flags->noMemory, "skip the peak-memory rows");

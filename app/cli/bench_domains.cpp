@@ -16,8 +16,12 @@
 #include "core/sim/brush.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/initial_state.hpp"
+#include "core/sim/local_relax.hpp"
 #include "core/sim/localized_rd.hpp"
+#include "core/sim/runner.hpp"
 #include "core/sim/sweep.hpp"
+#include "core/surface/surface_perturb.hpp"
+#include "core/surface/surface_setup.hpp"
 #include "gl/gpu_simulator.hpp"
 
 namespace morphogen::cli {
@@ -100,78 +104,75 @@ nlohmann::json atlasRows(const std::vector<std::pair<std::string, Make>>& backen
 
 // --- Localized reaction-diffusion ---------------------------------------------------
 //
-// Re-equilibrium: checked every kCheckEvery steps, the largest change of any
-// texel of any chemical since the previous check, per step, below kSettled.
-// (A settled Turing pattern drifts by far less; a pattern still re-forming
-// after a perturbation changes by 1e-3 or more per step.)
-constexpr int kCheckEvery = 25;
-constexpr float kSettled = 2e-5f;
-constexpr int kMaxSettleSteps = 40000;
+// Re-equilibrium as relaxLocally has it (core/sim/local_relax.hpp): every 25
+// steps, the largest change of any texel per step below 2e-5.
 
-using Clock = std::chrono::steady_clock;
-
-float maxChangePerStep(const State& a, const State& b, int steps) {
-    float worst = 0;
-    for (int c = 0; c < a.channels(); ++c)
-        for (std::size_t i = 0; i < a.cellCount(); ++i)
-            worst = std::max(worst, std::fabs(a.plane(c)[i] - b.plane(c)[i]));
-    return worst / float(steps);
-}
-
-struct Phase {
-    int tiles = 0; // 0: global
-    int iterations = 0;
-    double seconds = 0;
-};
-
-// Runs until settled, the active set following `schedule` (null: global
-// throughout); returns the phases (one per active set) and the total seconds.
-std::vector<Phase> runToEquilibrium(Simulator& sim, ActiveTileSchedule* schedule, bool gpu,
-                                    int tileCount) {
-    std::vector<Phase> phases;
-    State previous = sim.state();
-    int total = 0;
-    int sinceCheck = 0;
-    bool settled = false;
-    while (!settled && total < kMaxSettleSteps) {
-        const bool global = !schedule || schedule->global();
-        const int tiles = global ? tileCount : int(schedule->tiles().size());
-        if (phases.empty() || phases.back().tiles != tiles) {
-            phases.push_back({tiles, 0, 0});
-            sim.setActiveTiles(global ? std::vector<int>{} : schedule->tiles());
+// One table of Lo's Table 1: `s` settled on each backend, then `stroke`
+// (touching the tiles `touched`); time until settled again, globally and with
+// the active set A1 = N(A0), A2, ... (growing every iterationsToCrossTile
+// steps, global past 40% of the tiles).
+nlohmann::json localizedTable(const std::string& label, const Session& s, const Atlas& atlas,
+                              const Brush& stroke, const std::vector<int>& touched,
+                              const std::vector<std::pair<std::string, Make>>& backends) {
+    const TileNeighbourhoods neighbourhoods(atlas);
+    const int growEvery = iterationsToCrossTile(StepConstants::fromSession(s));
+    const RelaxOptions relax;
+    nlohmann::json rows = nlohmann::json::array();
+    std::printf("\n%-22s %-8s %9s %9s %10s   %s\n", label.c_str(), "backend", "global s", "local s",
+                "speed-up", "phases: it/s (tiles), A1 A2 A3 ...");
+    for (const auto& [backend, make] : backends) {
+        const bool gpu = backend == "gpu";
+        RelaxOptions options = relax;
+        if (gpu)
+            options.sync = [] { glFinish(); };
+        std::fprintf(stderr, "bench: %s on the %s (settling first)...\n", label.c_str(),
+                     backend.c_str());
+        std::unique_ptr<Simulator> sim = make(s);
+        sim->setState(initialState(s));
+        relaxLocally(*sim, nullptr, atlas.tileCount(), options);
+        const State settled = sim->state();
+        sim->setState(settled);
+        sim->applyBrush(stroke);
+        const RelaxResult global = relaxLocally(*sim, nullptr, atlas.tileCount(), options);
+        sim->setState(settled);
+        sim->applyBrush(stroke);
+        ActiveTileSchedule schedule(neighbourhoods, touched, growEvery, 0.4);
+        const RelaxResult local = relaxLocally(*sim, &schedule, atlas.tileCount(), options);
+        const double tg = global.seconds, tl = local.seconds;
+        std::printf("%-22s %-8s %9.3f %9.3f %10.2f  ", "", backend.c_str(), tg, tl, tg / tl);
+        nlohmann::json phases = nlohmann::json::array();
+        for (const RelaxPhase& p : local.phases) {
+            std::printf(" %.0f (%d)", p.iterationsPerSecond(), p.tiles);
+            phases.push_back({{"tiles", p.tiles},
+                              {"iterations", p.iterations},
+                              {"iterations_per_s", p.iterationsPerSecond()}});
         }
-        int n = kCheckEvery - sinceCheck;
-        if (!global)
-            n = std::min(n, schedule->iterationsLeft());
-        const auto start = Clock::now();
-        sim.run(n);
-        sinceCheck += n;
-        if (sinceCheck == kCheckEvery) {
-            const State now = sim.state(); // waits for the GPU
-            settled = maxChangePerStep(now, previous, kCheckEvery) < kSettled;
-            previous = now;
-            sinceCheck = 0;
-        } else if (gpu) {
-            glFinish();
-        }
-        phases.back().seconds += std::chrono::duration<double>(Clock::now() - start).count();
-        phases.back().iterations += n;
-        total += n;
-        if (schedule)
-            schedule->advance(n);
+        std::printf("\n");
+        std::fflush(stdout);
+        rows.push_back({{"backend", backend},
+                        {"tiles", atlas.tileCount()},
+                        {"tile", atlas.tileSize()},
+                        {"touched_tiles", touched.size()},
+                        {"grow_every", growEvery},
+                        {"settled_below_per_step", relax.settledBelow},
+                        {"global_seconds", tg},
+                        {"global_iterations", global.iterations},
+                        {"global_iterations_per_s", global.iterations / tg},
+                        {"localized_seconds", tl},
+                        {"localized_iterations", local.iterations},
+                        {"localized_settled", local.settled},
+                        {"localized_phases", phases},
+                        {"global_over_localized", tg / tl}});
     }
-    return phases;
+    return rows;
 }
 
 // Lo's Table 1 on a 32 x 32 periodic plane of 8-texel tiles (1024 tiles):
-// turk_small_spots settled, then a randomising stroke (Lo's distort) of
-// radius 6 texels at a tile corner; time until settled again, globally and
-// with the active set A1 = N(A0), A2, ... (growing every
-// iterationsToCrossTile steps, global past 40% of the tiles).
+// turk_small_spots, a randomising stroke (Lo's distort) of radius 6 texels
+// at a tile corner.
 nlohmann::json localizedRows(const std::vector<std::pair<std::string, Make>>& backends) {
     const int n = 8, side = 32;
     auto atlas = std::make_shared<const Atlas>(Atlas::periodicPlane(n, side, side));
-    const TileNeighbourhoods neighbourhoods(*atlas);
     Session s = loadPreset("turk_small_spots");
     useAtlas(s, atlas);
     Brush stroke;
@@ -181,60 +182,34 @@ nlohmann::json localizedRows(const std::vector<std::pair<std::string, Make>>& ba
     stroke.chemical = 0;
     stroke.value = 2.0f;
     stroke.seed = 3;
-    const std::vector<int> touched = touchedTiles(*atlas, stroke.region);
-    const int growEvery = iterationsToCrossTile(StepConstants::fromSession(s));
-    nlohmann::json rows = nlohmann::json::array();
-    std::printf("\n%-22s %-8s %9s %9s %10s   %s\n", "localized (1024 tiles)", "backend", "global s",
-                "local s", "speed-up", "phases: it/s (tiles), A1 A2 A3 ...");
-    for (const auto& [backend, make] : backends) {
-        const bool gpu = backend == "gpu";
-        std::fprintf(stderr, "bench: localized RD on the %s (settling first)...\n",
-                     backend.c_str());
-        std::unique_ptr<Simulator> sim = make(s);
-        sim->setState(initialState(s));
-        runToEquilibrium(*sim, nullptr, gpu, atlas->tileCount());
-        const State settled = sim->state();
-        const auto timeOf = [](const std::vector<Phase>& phases) {
-            double t = 0;
-            for (const Phase& p : phases)
-                t += p.seconds;
-            return t;
-        };
-        sim->setState(settled);
-        sim->applyBrush(stroke);
-        const std::vector<Phase> global = runToEquilibrium(*sim, nullptr, gpu, atlas->tileCount());
-        sim->setState(settled);
-        sim->applyBrush(stroke);
-        ActiveTileSchedule schedule(neighbourhoods, touched, growEvery, 0.4);
-        const std::vector<Phase> local = runToEquilibrium(*sim, &schedule, gpu, atlas->tileCount());
-        const double tg = timeOf(global), tl = timeOf(local);
-        std::printf("%-22s %-8s %9.3f %9.3f %10.2f  ", "", backend.c_str(), tg, tl, tg / tl);
-        nlohmann::json phases = nlohmann::json::array();
-        for (const Phase& p : local) {
-            std::printf(" %.0f (%d)", p.iterations / p.seconds, p.tiles);
-            phases.push_back({{"tiles", p.tiles},
-                              {"iterations", p.iterations},
-                              {"iterations_per_s", p.iterations / p.seconds}});
+    return localizedTable("localized (1024 tiles)", s, *atlas, stroke,
+                          touchedTiles(*atlas, stroke.region), backends);
+}
+
+// The same on a mesh atlas (Lo section 5.3): turk_small_spots on the sample
+// blob at the automatic tile budget and tile size (render --mesh's defaults),
+// weighted by the surface metric; the distort is a ball of 0.1 mesh units
+// (a few texels) round the surface point nearest (1, 0, 0).
+nlohmann::json meshLocalizedRows(const std::vector<std::pair<std::string, Make>>& backends) {
+    Session s = loadPreset("turk_small_spots");
+    s.surface.mesh = "sample:blob";
+    std::fprintf(stderr, "bench: building the blob's tiles...\n");
+    const SurfaceSetup setup = setUpSurface(s);
+    s = segmentSessions(s).back(); // as it runs: dt split into the weighted atlas's substeps
+    const Atlas& atlas = *setup.tiles.atlas;
+    Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+    float best = INFINITY;
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+        if (atlas.used(i)) {
+            const float d = (setup.tiles.texelPositions[i] - Eigen::Vector3f(1, 0, 0)).norm();
+            if (d < best) {
+                best = d;
+                centre = setup.tiles.texelPositions[i];
+            }
         }
-        std::printf("\n");
-        std::fflush(stdout);
-        int globalIterations = 0;
-        for (const Phase& p : global)
-            globalIterations += p.iterations;
-        rows.push_back({{"backend", backend},
-                        {"tiles", atlas->tileCount()},
-                        {"tile", n},
-                        {"touched_tiles", touched.size()},
-                        {"grow_every", growEvery},
-                        {"settled_below_per_step", kSettled},
-                        {"global_seconds", tg},
-                        {"global_iterations", globalIterations},
-                        {"global_iterations_per_s", globalIterations / tg},
-                        {"localized_seconds", tl},
-                        {"localized_phases", phases},
-                        {"global_over_localized", tg / tl}});
-    }
-    return rows;
+    const SurfacePerturbation p = perturbSurface(setup.tiles, s.domain(), centre, 0.1f, 0, 2.0f, 3);
+    return localizedTable("localized, blob (" + std::to_string(atlas.tileCount()) + " tiles)", s,
+                          atlas, p.brush, p.touched, backends);
 }
 
 // A 4 x 4 gs_coral sweep of 64-cell tiles: one batched simulation against
@@ -294,6 +269,7 @@ nlohmann::json benchDomains(bool gpu, bool cpu, double seconds) {
                               [](const Session& s) { return std::make_unique<CpuSimulator>(s); });
     return {{"atlas", atlasRows(backends, seconds)},
             {"localized", localizedRows(backends)},
+            {"localized_mesh", meshLocalizedRows(backends)},
             {"sweep", sweepRows(backends, seconds)}};
 }
 

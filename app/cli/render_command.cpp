@@ -10,6 +10,7 @@
 #include "cli/flag_values.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/knob_flags.hpp"
+#include "cli/perturb_flags.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_frames.hpp"
 #include "cli/render_output.hpp"
@@ -65,6 +66,7 @@ struct RenderFlags {
     FrameFlags frames;
     SettleFlags settle;
     SurfaceFlags surface;
+    PerturbFlags perturb;
 };
 
 // An enumeration's name given to `flag`; throws InputError listing `accepted`.
@@ -270,6 +272,7 @@ void render(const RenderFlags& flags) {
     } else if (image) {
         imageFormatForPath(f.out); // an unsupported extension is bad input, found before the run
     }
+    checkPerturbFlags(f.perturb, surface);
     if (f.bitDepth != 8 && f.bitDepth != 16)
         throw InputError("--bit-depth " + std::to_string(f.bitDepth) +
                          " is not supported (accepted: 8, 16)");
@@ -352,6 +355,8 @@ void render(const RenderFlags& flags) {
 
     OutputFiles files;
     if (surface) {
+        if (!cancelled)
+            applyPerturbation(f.perturb, session, *surfaceSetup, backend.makeSimulator, result);
         std::fprintf(stderr, "morphogen: %s\n",
                      describeSurfaceResult(result, *surfaceSetup).c_str());
         const std::vector<std::string> written =
@@ -457,6 +462,7 @@ void addRenderCommand(CLI::App& app) {
     addFrameFlags(*cmd, flags->frames);
     addSettleFlags(*cmd, flags->settle);
     addSurfaceFlags(*cmd, flags->surface);
+    addPerturbFlags(*cmd, flags->perturb);
     cmd->callback([flags] { render(*flags); });
 }
 

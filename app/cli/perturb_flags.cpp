@@ -1,0 +1,97 @@
+#include "cli/perturb_flags.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "core/base/errors.hpp"
+#include "core/domain/tile_sets.hpp"
+#include "core/sim/local_relax.hpp"
+#include "core/sim/localized_rd.hpp"
+#include "core/surface/surface_perturb.hpp"
+
+namespace morphogen::cli {
+
+namespace {
+
+std::array<double, 4> parseBall(const std::string& text) {
+    std::array<double, 4> v{};
+    std::istringstream in(text);
+    std::string part;
+    int n = 0;
+    while (std::getline(in, part, ',')) {
+        std::size_t used = 0;
+        double x = 0;
+        try {
+            x = std::stod(part, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (n >= 4 || used == 0 || used != part.size() || !std::isfinite(x))
+            throw InputError("--perturb '" + text +
+                             "' is not accepted (X,Y,Z,R: four finite numbers, the centre in "
+                             "mesh units and a radius R > 0)");
+        v[std::size_t(n++)] = x;
+    }
+    if (n != 4 || !(v[3] > 0))
+        throw InputError("--perturb '" + text +
+                         "' is not accepted (X,Y,Z,R: four finite numbers, the centre in mesh "
+                         "units and a radius R > 0)");
+    return v;
+}
+
+} // namespace
+
+void addPerturbFlags(CLI::App& command, PerturbFlags& flags) {
+    command
+        .add_option("--perturb", flags.ball,
+                    "on a mesh: randomise the finished pattern within R (mesh units) of X,Y,Z, "
+                    "then grow it back with localized RD")
+        ->type_name("X,Y,Z,R");
+}
+
+void checkPerturbFlags(const PerturbFlags& flags, bool surface) {
+    if (flags.ball.empty())
+        return;
+    parseBall(flags.ball);
+    if (!surface)
+        throw InputError("--perturb needs a mesh (--mesh or a session's \"surface\")");
+}
+
+void applyPerturbation(const PerturbFlags& flags, const Session& session, const SurfaceSetup& setup,
+                       const SimulatorFactory& make, RunResult& result) {
+    if (flags.ball.empty())
+        return;
+    const std::array<double, 4> ball = parseBall(flags.ball);
+    const Atlas& atlas = *setup.tiles.atlas;
+    // Lo's distort: +-2 on the first chemical, enough to wipe the features there.
+    const SurfacePerturbation p =
+        perturbSurface(setup.tiles, session.domain(),
+                       Eigen::Vector3f(float(ball[0]), float(ball[1]), float(ball[2])),
+                       float(ball[3]), 0, 2.0f, std::uint64_t(session.seed) + 1, "--perturb");
+    // As the run stepped: dt split into the weighted atlas's substeps.
+    const Session running = segmentSessions(session).back();
+    std::unique_ptr<Simulator> sim = make(running);
+    sim->setState(result.state);
+    sim->applyBrush(p.brush);
+    const TileNeighbourhoods neighbourhoods(atlas);
+    ActiveTileSchedule schedule(neighbourhoods, p.touched,
+                                iterationsToCrossTile(StepConstants::fromSession(running)));
+    const RelaxResult r = relaxLocally(*sim, &schedule, atlas.tileCount());
+    std::ostringstream os;
+    os << "perturbed " << p.brush.region.cells().size() << " texels in " << p.touched.size()
+       << " tiles; localized RD " << (r.settled ? "re-settled" : "did not re-settle") << " after "
+       << r.iterations << " steps, " << r.seconds << " s; phases it/s (tiles):";
+    for (const RelaxPhase& phase : r.phases)
+        os << " " << (phase.phase ? "A" + std::to_string(phase.phase) : std::string("global"))
+           << " " << long(std::lround(phase.iterationsPerSecond())) << " (" << phase.tiles << ")";
+    os << (r.global ? "; went global" : "") << " of " << atlas.tileCount() << " tiles";
+    std::fprintf(stderr, "morphogen: %s\n", os.str().c_str());
+    if (!result.settled)
+        std::fprintf(stderr, "morphogen: note: the run had not settled before --perturb; tiles "
+                             "outside the active set kept their unsettled values\n");
+    result.state = sim->takeState();
+}
+
+} // namespace morphogen::cli
