@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/domain/atlas_weights.hpp"
 #include "core/mesh/mesh_io.hpp"
 #include "core/mesh/mesh_samples.hpp"
 #include "core/session/session.hpp"
@@ -59,14 +60,15 @@ nlohmann::json meshToAtlasRow() {
     s.surface.mesh = file.path;
     std::vector<std::pair<std::string, Clock::time_point>> marks;
     const auto start = Clock::now();
-    SurfaceSetup setup = setUpSurface(s, [&](const std::string& phase, double) {
-        if (marks.empty() || marks.back().first != phase)
-            marks.emplace_back(phase, Clock::now());
+    // setUpSurface reports "projection" done (1) before it computes the
+    // weights: the time from there on is the weights'.
+    SurfaceSetup setup = setUpSurface(s, [&](const std::string& phase, double fraction) {
+        const std::string name = phase == "projection" && fraction >= 1 ? "weights" : phase;
+        if (marks.empty() || marks.back().first != name)
+            marks.emplace_back(name, Clock::now());
     });
     const auto end = Clock::now();
-    marks.emplace_back("weights", end);
-    // setUpSurface reports "projection" done (1) before the weights: the
-    // time from that last report on is the weights'.
+    marks.emplace_back("end", end);
     const double total = std::chrono::duration<double>(end - start).count();
 
     std::printf("\n%-22s %9s %7s %9s %8s  %s\n", "mesh to atlas", "triangles", "tiles", "texels",
@@ -105,44 +107,55 @@ double sessionStepsPerSecond(const Session& s, const Make& make, bool gpu, doubl
                                  seconds, 20);
 }
 
-// Global steps on the holes model's atlas (automatic budget and tile size,
-// metric weights with curvature scaling: its sample preset) against a flat
-// grid of about as many cells as the atlas has used texels, same model.
+// Global steps on the holes model's atlas (automatic budget, metric weights
+// with curvature scaling: its sample preset) against a flat grid of about as
+// many cells as the atlas has used texels, same model; at the automatic tile
+// size (4x4 texels at the preset's length: three quarters of the texels are
+// on a tile border and go through the connectivity map) and at 16x16. Steps
+// are engine steps: a session step on the atlas takes `substeps` of them
+// (the weights' stability bound), shown beside the fraction.
 nlohmann::json throughputRows(const std::vector<std::pair<std::string, Make>>& backends,
                               double seconds) {
-    Session onAtlas = loadPreset("surface_curvature_spots_holes");
-    const SurfaceSetup setup = setUpSurface(onAtlas);
-    const Atlas& atlas = *setup.tiles.atlas;
-    std::size_t used = 0;
-    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
-        used += atlas.used(i) ? 1 : 0;
-    Session grid = loadPreset("surface_curvature_spots_holes");
-    grid.surface = {};
-    const int side = int(std::lround(std::sqrt(double(used))));
-    grid.width = grid.height = side;
     nlohmann::json rows = nlohmann::json::array();
-    std::printf("\n%-22s %-8s %9s %9s %14s %14s %10s\n", "surface atlas", "backend", "texels",
-                "texture", "atlas texel/s", "grid cell/s", "fraction");
-    for (const auto& [backend, make] : backends) {
-        const bool gpu = backend == "gpu";
-        std::fprintf(stderr, "bench: holes atlas on the %s...\n", backend.c_str());
-        const double a = sessionStepsPerSecond(onAtlas, make, gpu, seconds) * double(used);
-        const double g = sessionStepsPerSecond(grid, make, gpu, seconds) * double(side) * side;
-        const std::string texture =
-            std::to_string(atlas.width()) + "x" + std::to_string(atlas.height());
-        std::printf("%-22s %-8s %9zu %9s %14.3g %14.3g %10.3f\n", "holes (automatic)",
-                    backend.c_str(), used, texture.c_str(), a, g, a / g);
-        std::fflush(stdout);
-        rows.push_back({{"mesh", "sample:holes"},
-                        {"backend", backend},
-                        {"tiles", atlas.tileCount()},
-                        {"tile_size", atlas.tileSize()},
-                        {"texels", used},
-                        {"texture", {atlas.width(), atlas.height()}},
-                        {"grid", side},
-                        {"atlas_texels_per_s", a},
-                        {"grid_cells_per_s", g},
-                        {"fraction_of_grid", a / g}});
+    std::printf("\n%-22s %-8s %9s %9s %14s %14s %9s %9s\n", "surface atlas", "backend", "texels",
+                "texture", "atlas texel/s", "grid cell/s", "fraction", "substeps");
+    for (const int tileSize : {0, 16}) {
+        Session onAtlas = loadPreset("surface_curvature_spots_holes");
+        onAtlas.surface.tileSize = tileSize;
+        const SurfaceSetup setup = setUpSurface(onAtlas);
+        const Atlas& atlas = *setup.tiles.atlas;
+        const int substeps = weightedSubsteps(*setup.weights);
+        std::size_t used = 0;
+        for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+            used += atlas.used(i) ? 1 : 0;
+        Session grid = loadPreset("surface_curvature_spots_holes");
+        grid.surface = {};
+        const int side = int(std::lround(std::sqrt(double(used))));
+        grid.width = grid.height = side;
+        const std::string name = "holes, tiles " + std::to_string(atlas.tileSize()) + "x" +
+                                 std::to_string(atlas.tileSize());
+        for (const auto& [backend, make] : backends) {
+            const bool gpu = backend == "gpu";
+            std::fprintf(stderr, "bench: %s atlas on the %s...\n", name.c_str(), backend.c_str());
+            const double a = sessionStepsPerSecond(onAtlas, make, gpu, seconds) * double(used);
+            const double g = sessionStepsPerSecond(grid, make, gpu, seconds) * double(side) * side;
+            const std::string texture =
+                std::to_string(atlas.width()) + "x" + std::to_string(atlas.height());
+            std::printf("%-22s %-8s %9zu %9s %14.3g %14.3g %9.3f %9d\n", name.c_str(),
+                        backend.c_str(), used, texture.c_str(), a, g, a / g, substeps);
+            std::fflush(stdout);
+            rows.push_back({{"mesh", "sample:holes"},
+                            {"backend", backend},
+                            {"tiles", atlas.tileCount()},
+                            {"tile_size", atlas.tileSize()},
+                            {"texels", used},
+                            {"texture", {atlas.width(), atlas.height()}},
+                            {"grid", side},
+                            {"atlas_texels_per_s", a},
+                            {"grid_cells_per_s", g},
+                            {"fraction_of_grid", a / g},
+                            {"substeps", substeps}});
+        }
     }
     return rows;
 }
