@@ -57,7 +57,7 @@ Camera cameraFor(const BoundingSphere& bounds, const ViewOptions& view) {
     const double aspect = double(view.width) / double(view.height);
     const double fovY = radians(view.fieldOfView);
     const double fovX = 2.0 * std::atan(aspect * std::tan(fovY / 2.0));
-    const double fit = 1.05 / std::sin(std::min(fovX, fovY) / 2.0);
+    const double fit = 1.12 / std::sin(std::min(fovX, fovY) / 2.0); // a margin round the model
     const double distance = (view.distance > 0 ? view.distance : fit) * radius;
 
     const double az = radians(view.azimuth), el = radians(view.elevation);

@@ -2,6 +2,7 @@
 # Installs Morphogen's Debian 12 packages (only those missing) and builds it
 # into build/. Idempotent: a second run installs nothing and rebuilds only
 # what changed. Used by scripts/render-default.sh, scripts/test.sh and CI.
+# --packages-only: install the packages, build nothing (scripts/sanitize.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -13,6 +14,7 @@ packages=(
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev libmeshoptimizer-dev
   libtinyobjloader-dev libcgal-dev
   xvfb xauth
+  clang libclang-rt-14-dev libfuzzer-14-dev libomp-dev
 )
 
 missing=()
@@ -28,6 +30,8 @@ if [ ${#missing[@]} -gt 0 ]; then
 else
   echo "==> setup: all ${#packages[@]} Debian packages already installed"
 fi
+
+[ "${1:-}" = "--packages-only" ] && exit 0
 
 echo "==> setup: configuring (build/)"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null

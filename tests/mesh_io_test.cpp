@@ -308,6 +308,12 @@ TEST(MeshIo, BrokenGltfContentIsRefusedWithTheReason) {
     const std::vector<float> tri = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     expectRefused(write("index.gltf", gltf(tri, {0, 1, 7}, accessors(3, 3) + ", " + meshes)),
                   "mesh 0 primitive 0: index 2 is 7, but there are 3 vertices");
+    // Signed indices (invalid glTF, read all the same): -1 is refused as -1
+    // (mesh_fuzzer found its conversion to an unsigned integer undefined).
+    std::string signedIndices = accessors(3, 3);
+    signedIndices.replace(signedIndices.rfind("5123"), 4, "5122");
+    expectRefused(write("signed.gltf", gltf(tri, {0, 1, 0xFFFF}, signedIndices + ", " + meshes)),
+                  "mesh 0 primitive 0: index 2 is -1, but there are 3 vertices");
     expectRefused(
         write("long.gltf", gltf(tri, {0, 1, 2}, accessors(5, 3) + ", " + meshes)),
         "POSITION (accessor 0) (5 elements at byte 0) runs past the end of buffer view 0");

@@ -157,7 +157,7 @@ TEST(SurfaceView, FramesTheModelByDefault) {
     EXPECT_GT(centre[1], centre[2]);
     // Twice as far: half the size.
     gl::ViewOptions far = cutOut(96, 64);
-    far.distance = 2 * 1.05 / std::sin(15.0 * 3.14159265358979 / 180.0); // twice the framing
+    far.distance = 2 * 1.12 / std::sin(15.0 * 3.14159265358979 / 180.0); // twice the framing
     const gl::SurfaceImage small = renderer.render(far);
     int covered = 0, coveredSmall = 0;
     for (std::size_t p = 0; p < im.rgba.size(); p += 4) {

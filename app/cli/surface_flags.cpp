@@ -53,7 +53,7 @@ void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
         ->group(group);
     cmd.add_option("--curvature-scale", f.curvatureScale,
                    "shrink features where the mean curvature is high (strength, 0 = off; "
-                   "size factor 1 / (1 + S |H| / median |H|))")
+                   "size factor proportional to 1 / (1 + S |H| / median |H|))")
         ->group(group);
     cmd.add_option("--view", f.view,
                    "camera: AZIMUTH,ELEVATION[,DISTANCE] in degrees and bounding-sphere radii "

@@ -209,10 +209,16 @@ void addPrimitive(const Reader& reader, const tinygltf::Model& model, int meshIn
             reader.accessor(prim.indices, TINYGLTF_TYPE_SCALAR, what + "'s indices");
         indices.reserve(raw.size());
         for (std::size_t i = 0; i < raw.size(); ++i) {
-            if (raw[i] < 0 || raw[i] >= double(count))
-                reader.fail(what + ": index " + std::to_string(i) + " is " +
-                            std::to_string(std::uint64_t(raw[i])) + ", but there are " +
-                            std::to_string(count) + " vertices");
+            // Signed or float index accessors (invalid glTF, which tinygltf
+            // reads all the same) can hold negative values and NaN: refused
+            // here, and printed as the double they are, since converting them
+            // to an unsigned integer is undefined behaviour.
+            if (!(raw[i] >= 0 && raw[i] < double(count))) {
+                char value[32];
+                std::snprintf(value, sizeof value, "%.17g", raw[i]);
+                reader.fail(what + ": index " + std::to_string(i) + " is " + value +
+                            ", but there are " + std::to_string(count) + " vertices");
+            }
             indices.push_back(std::uint32_t(raw[i]));
         }
     } else {

@@ -115,9 +115,20 @@ std::vector<float> curvatureScale(const SurfaceTiles& tiles, double strength) {
     std::vector<float> f(cells, 1.0f);
     if (!(m > 0) || strength == 0)
         return f;
+    // Normalised so the area-weighted mean of f^2 (the diffusion rate's factor) is 1: the
+    // pattern keeps its overall scale and only redistributes it.
+    double weighted = 0, area = 0;
+    for (std::size_t c = 0; c < cells; ++c)
+        if (atlas.used(std::uint32_t(c))) {
+            const double g = 1.0 / (1.0 + strength * std::abs(double(tiles.meanCurvature[c])) / m);
+            f[c] = float(g);
+            weighted += tiles.texelArea[c] * g * g;
+            area += tiles.texelArea[c];
+        }
+    const double norm = weighted > 0 && area > 0 ? std::sqrt(area / weighted) : 1.0;
     for (std::size_t c = 0; c < cells; ++c)
         if (atlas.used(std::uint32_t(c)))
-            f[c] = float(1.0 / (1.0 + strength * std::abs(double(tiles.meanCurvature[c])) / m));
+            f[c] = float(f[c] * norm);
     return f;
 }
 

@@ -55,12 +55,14 @@ struct SurfaceWeightOptions {
 AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOptions& options);
 
 // The feature size factor for curvature-scaled patterns (Lo section 5.2):
-//     f = 1 / (1 + strength * |H| / median |H|)
-// per used texel (H the mean curvature, the median over used texels), 1 for
-// unused cells and everywhere when the median is 0 (a flat surface). Features
-// shrink where the surface bends more than it typically does: at strength 1
-// a texel of median curvature gets half the size of a flat one. strength 0
-// gives all ones. Throws InputError for a strength outside 0 to
+//     f = k / (1 + strength * |H| / median |H|)
+// per used texel (H the mean curvature, the median over used texels), with k
+// such that the area-weighted mean of f^2 is 1 (the pattern keeps its overall
+// scale; only where the features are large or small changes); 1 for unused
+// cells and everywhere when the median is 0 (a flat surface). Features shrink
+// where the surface bends more than it typically does: at strength 1 a texel
+// of median curvature gets half the size of a flat one. strength 0 gives all
+// ones. Throws InputError for a strength outside 0 to
 // kMaxSurfaceScaleStrength (core/base/limits.hpp).
 std::vector<float> curvatureScale(const SurfaceTiles& tiles, double strength);
 

@@ -1,0 +1,106 @@
+# render --mesh end to end: a screenshot and a textured GLB from a sample mesh,
+# the written session reproducing the screenshot, turntable frames, and bad
+# surface input refused with exit 2 naming the flag, field or file.
+# Run by ctest: cmake -DMORPHOGEN=... -DWORK=... -DSOURCE=... -P cli_surface_test.cmake
+
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+
+# run(<expected exit code> <text stderr must contain or ""> args...)
+function(run expected needle)
+  execute_process(COMMAND ${MORPHOGEN} ${ARGN}
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err WORKING_DIRECTORY "${WORK}")
+  set(ok TRUE)
+  if(NOT rc EQUAL expected)
+    set(ok FALSE)
+  endif()
+  if(NOT needle STREQUAL "")
+    string(FIND "${err}" "${needle}" at)
+    if(at EQUAL -1)
+      set(ok FALSE)
+    endif()
+  endif()
+  if(ok)
+    message(STATUS "ok: morphogen ${ARGN}")
+  else()
+    message(SEND_ERROR "FAILED: morphogen ${ARGN}\n  want exit ${expected} and stderr containing '${needle}'\n  got exit ${rc}\n  stderr: ${err}")
+  endif()
+  set(last_stderr "${err}" PARENT_SCOPE)
+endfunction()
+
+# Small and quick: 300 tiles of 4 x 4 texels, a few hundred steps.
+set(small --tiles 300 --tile-size 4 --steps 300 --backend cpu --resolution 96x96)
+
+run(0 "300 tiles of 4x4 texels" render --mesh sample:sphere --preset turk_large_spots ${small} --out sphere.png)
+foreach(needle "features on the surface" "model units per mesh unit")
+  string(FIND "${last_stderr}" "${needle}" at)
+  if(at EQUAL -1)
+    message(SEND_ERROR "render --mesh: no '${needle}' in the report: ${last_stderr}")
+  endif()
+endforeach()
+foreach(f sphere.png sphere.json)
+  if(NOT EXISTS "${WORK}/${f}")
+    message(SEND_ERROR "render --mesh did not write ${f}")
+  endif()
+endforeach()
+file(READ "${WORK}/sphere.json" session)
+string(JSON mesh GET "${session}" surface mesh)
+string(JSON tiles GET "${session}" surface tiles)
+string(JSON tileSize GET "${session}" surface tile_size)
+if(NOT mesh STREQUAL "sample:sphere" OR NOT tiles EQUAL 300 OR NOT tileSize EQUAL 4)
+  message(SEND_ERROR "sphere.json's surface block: mesh ${mesh}, tiles ${tiles}, tile_size ${tileSize}")
+endif()
+
+# The session reproduces the screenshot (same backend, same seed, same steps).
+run(0 "" render --session sphere.json --out again.png --backend cpu)
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files "${WORK}/sphere.png" "${WORK}/again.png"
+  RESULT_VARIABLE differ)
+if(differ)
+  message(SEND_ERROR "render --session sphere.json did not reproduce sphere.png")
+else()
+  message(STATUS "ok: the written session reproduces the screenshot")
+endif()
+
+# The textured model: a binary glTF (magic "glTF", version 2).
+run(0 "" render --mesh sample:torus --preset meinhardt_random_stripes ${small} --out torus.glb)
+file(READ "${WORK}/torus.glb" head LIMIT 8 HEX)
+if(NOT head STREQUAL "676c544602000000")
+  message(SEND_ERROR "torus.glb does not start as a GLB 2.0 file: ${head}")
+endif()
+
+# Turntable frames, and the options recorded.
+run(0 "" render --mesh sample:sphere --preset turk_large_spots ${small} --turntable 3
+    --view 10,30 --no-metric-correction --curvature-scale 0.5 --out turn.png)
+foreach(f turn_000.png turn_001.png turn_002.png turn.json)
+  if(NOT EXISTS "${WORK}/${f}")
+    message(SEND_ERROR "--turntable 3 did not write ${f}")
+  endif()
+endforeach()
+file(READ "${WORK}/turn.json" session)
+string(JSON corrected GET "${session}" surface metric_correction)
+string(JSON by GET "${session}" surface scale by)
+string(JSON frames GET "${session}" surface view turntable)
+if(corrected OR NOT by STREQUAL "mean_curvature" OR NOT frames EQUAL 3)
+  message(SEND_ERROR "turn.json: metric_correction ${corrected}, scale.by ${by}, turntable ${frames}")
+endif()
+
+# Bad surface input: exit 2, the flag, field or file named, nothing written.
+run(2 "--tile-size '2'" render --mesh sample:sphere --preset turk_large_spots --tile-size 2 --out bad.png)
+run(2 "--tiles '1'" render --mesh sample:sphere --preset turk_large_spots --tiles 1 --out bad.png)
+run(2 "need a mesh" render --preset turk_large_spots --tile-size 8 --out bad.png)
+run(2 "does not apply on a mesh" render --mesh sample:sphere --preset turk_large_spots --size 64 --out bad.png)
+run(2 "not raw EXR chemicals" render --mesh sample:sphere --preset turk_large_spots --out bad.exr)
+run(2 "--view '10'" render --mesh sample:sphere --preset turk_large_spots --view 10 --out bad.png)
+run(2 "--resolution width '8'" render --mesh sample:sphere --preset turk_large_spots --resolution 8x8 --out bad.png)
+run(2 "unknown" render --mesh sample:cube --preset turk_large_spots --out bad.png)
+run(2 "no such mesh file" render --mesh missing.obj --preset turk_large_spots --out bad.png)
+file(WRITE "${WORK}/empty.obj" "")
+run(2 "the file is empty" render --mesh empty.obj --preset turk_large_spots --out bad.png)
+# Three triangles on one edge: not a surface tiles can cover.
+file(WRITE "${WORK}/fin.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n")
+run(2 "non-manifold" render --mesh fin.obj --preset turk_large_spots --out bad.png)
+# Anisotropic diffusion needs a direction field on the surface: refused, naming the operator.
+run(2 "anisotropic" render --mesh sample:sphere --preset wk_zebra ${small} --out bad.png)
+if(EXISTS "${WORK}/bad.png" OR EXISTS "${WORK}/bad.json")
+  message(SEND_ERROR "a refused surface render wrote bad.png or bad.json")
+endif()
