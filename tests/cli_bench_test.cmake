@@ -17,7 +17,7 @@ endif()
 
 # The other rows at their smallest: throughput at 16x16, no domains or convergence.
 execute_process(COMMAND ${MORPHOGEN} bench --sizes 16 --operator-sizes 16 --seconds 0.01
-  --no-domains --no-convergence --no-resolution --memory-sizes 1024 --json bench.json
+  --no-domains --no-surface --no-convergence --no-resolution --memory-sizes 1024 --json bench.json
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err WORKING_DIRECTORY "${WORK}")
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "bench with memory rows: exit ${rc}\n${err}")
@@ -66,3 +66,34 @@ endforeach()
 if(NOT cpu_rows EQUAL 1)
   message(SEND_ERROR "want one cpu memory row, got ${cpu_rows}")
 endif()
+
+# The surface rows alone (issue 11): mesh to atlas for the 81,920-triangle blob
+# with its phase times, and the holes atlas's throughput against a grid, each
+# with finite positive figures.
+execute_process(COMMAND ${MORPHOGEN} bench --seconds 0.01 --no-throughput --no-domains
+  --no-convergence --no-memory --no-resolution --json surface.json
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err WORKING_DIRECTORY "${WORK}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "bench surface rows: exit ${rc}\n${err}")
+endif()
+file(READ "${WORK}/surface.json" report)
+string(JSON triangles GET "${report}" surface mesh_to_atlas triangles)
+string(JSON texels GET "${report}" surface mesh_to_atlas texels)
+string(JSON seconds GET "${report}" surface mesh_to_atlas seconds)
+string(JSON projection GET "${report}" surface mesh_to_atlas phases projection)
+if(NOT triangles EQUAL 81920 OR NOT texels GREATER 1000 OR NOT seconds GREATER 0
+   OR NOT projection GREATER 0 OR projection GREATER seconds)
+  message(SEND_ERROR "mesh to atlas: ${triangles} triangles, ${texels} texels, ${seconds} s, projection ${projection} s")
+endif()
+string(JSON rows LENGTH "${report}" surface throughput)
+if(rows LESS 2)
+  message(SEND_ERROR "want throughput rows at two tile sizes, got ${rows}")
+endif()
+math(EXPR last "${rows} - 1")
+foreach(i RANGE ${last})
+  string(JSON fraction GET "${report}" surface throughput ${i} fraction_of_grid)
+  string(JSON substeps GET "${report}" surface throughput ${i} substeps)
+  if(NOT fraction GREATER 0 OR substeps LESS 1)
+    message(SEND_ERROR "surface throughput row ${i}: fraction ${fraction}, substeps ${substeps}")
+  endif()
+endforeach()

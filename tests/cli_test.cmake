@@ -573,7 +573,7 @@ run(2 "--max-steps applies to a run until settled" render --session settled.json
 # bench's resolution section alone (issue: the same look at any size): a
 # preset rendered until settled at each size, with finite figures per row, the
 # time ratio and the refined-versus-direct row; bad sizes are refused first.
-run(0 "" bench --no-throughput --no-domains --no-convergence --no-memory --resolution-sizes 32,64
+run(0 "" bench --no-throughput --no-domains --no-surface --no-convergence --no-memory --resolution-sizes 32,64
     --resolution-presets turk_large_spots --resolution-compare-size 64 --json res.json)
 file(READ "${WORK}/res.json" res)
 string(JSON res_presets ERROR_VARIABLE res_error LENGTH "${res}" resolution presets)
@@ -619,7 +619,7 @@ if(at EQUAL -1)
 endif()
 run(2 "is not a multiple of the smallest size" bench --no-throughput --no-domains --no-convergence --no-memory --resolution-sizes 32,48)
 run(2 "unknown preset 'nope'" bench --no-throughput --no-domains --no-convergence --no-memory --resolution-presets turk_large_spots,nope)
-run(0 "" bench --no-throughput --no-domains --no-convergence --no-memory --no-resolution --json res_none.json)
+run(0 "" bench --no-throughput --no-domains --no-surface --no-convergence --no-memory --no-resolution --json res_none.json)
 file(READ "${WORK}/res_none.json" res)
 string(JSON v ERROR_VARIABLE res_error GET "${res}" resolution)
 if(NOT res_error)

@@ -1,7 +1,7 @@
 // morphogen bench: throughput of the GPU step against a same-format copy pass
 // on the same context (the ratio is the figure: it cancels the machine's
 // speed), and of the CPU backend, at several grid sizes; then the domain,
-// convergence and resolution sections, and the peak memory of renders
+// surface, convergence and resolution sections, and the peak memory of renders
 // against the state they simulate (bench_memory.hpp).
 
 #include <chrono>
@@ -13,6 +13,7 @@
 #include "cli/bench_domains.hpp"
 #include "cli/bench_memory.hpp"
 #include "cli/bench_resolution.hpp"
+#include "cli/bench_surface.hpp"
 #include "cli/bench_timing.hpp"
 #include "cli/commands.hpp"
 #include "core/analysis/pattern_stats.hpp"
@@ -43,6 +44,7 @@ struct BenchFlags {
     int convergenceSize = 1024;
     bool noConvergence = false;
     bool noDomains = false;
+    bool noSurface = false;
     std::string memorySizes = "1024,2048,4096";
     bool noMemory = false;
     bool noResolution = false;
@@ -354,7 +356,7 @@ void bench(const BenchFlags& f) {
     // The throughput and domain rows measure the GPU on this context; the
     // later sections pick their own backend.
     std::unique_ptr<gl::Context> context;
-    if (!f.noGpu && (!f.noThroughput || !f.noDomains))
+    if (!f.noGpu && (!f.noThroughput || !f.noDomains || !f.noSurface))
         context = openContext(f, report);
     const bool gpuRows = context != nullptr;
 
@@ -364,6 +366,8 @@ void bench(const BenchFlags& f) {
     }
     if (!f.noDomains)
         report["domains"] = benchDomains(gpuRows, !f.noCpu, f.seconds);
+    if (!f.noSurface)
+        report["surface"] = benchSurface(gpuRows, !f.noCpu, f.seconds);
     if (!f.noConvergence)
         report["convergence"] = convergenceRows(f);
     if (!f.noMemory) {
@@ -412,6 +416,9 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_flag("--no-convergence", flags->noConvergence, "skip time-to-converged-pattern");
     cmd->add_flag("--no-domains", flags->noDomains,
                   "skip the atlas, localized-RD (plane and mesh) and batched-sweep rows");
+    cmd->add_flag("--no-surface", flags->noSurface,
+                  "skip the surface rows (mesh to atlas for an 82k-triangle model, throughput "
+                  "on the holes model's atlas against a flat grid)");
     cmd->add_option("--memory-sizes", flags->memorySizes,
                     "sizes of the peak-memory renders, one process each (default 1024,2048,4096)");
     cmd->add_flag("--no-memory", flags->noMemory, "skip the peak-memory rows");
