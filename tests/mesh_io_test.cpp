@@ -270,7 +270,10 @@ TEST(MeshIo, BrokenFilesAreRefusedWithTheReason) {
     expectRefused(write("range.obj", goodObj + "f 1 2 9\n"),
                   "line 4: a face refers to vertex 9, but the file has 3 vertices");
     expectRefused(write("back.obj", goodObj + "f 1 2 -4\n"),
-                  "line 4: face corner '-4' refers back 4 vertices, but only 3 precede it");
+                  "line 4: face corner '-4' refers back past the first vertex: only 3 precede it");
+    // Below LONG_MIN strtol saturates; negating that was undefined (found by mesh_fuzzer).
+    expectRefused(write("far_back.obj", goodObj + "f 1 2 -99999999999999999999\n"),
+                  "line 4: face corner '-99999999999999999999' refers back past the first vertex");
     expectRefused(write("zero.obj", goodObj + "f 0 1 2\n"), "OBJ vertex numbers start at 1");
     expectRefused(write("collapsed.obj", "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n"),
                   "all 1 triangles collapse");

@@ -75,9 +75,10 @@ void checkLines(const std::string& path, const std::string& text) {
                     throw InputError(at() + "face corner " + quoted(c, end) +
                                      ": OBJ vertex numbers start at 1 (or count back from -1)");
                 // A negative index counts back from the vertices read so far.
-                if (index < 0 && -index > long(vertices))
-                    throw InputError(at() + "face corner " + quoted(c, end) + " refers back " +
-                                     std::to_string(-index) + " vertices, but only " +
+                // Compared without negating: strtol gives LONG_MIN for a number below it.
+                if (index < 0 && index < -static_cast<long>(vertices))
+                    throw InputError(at() + "face corner " + quoted(c, end) +
+                                     " refers back past the first vertex: only " +
                                      std::to_string(vertices) + " precede it");
                 if (index > largestIndex) {
                     largestIndex = index;
