@@ -145,8 +145,8 @@ TEST(SurfaceMeasure, MetricCorrectionEvensOutSpotAreas) {
 // Curvature-scaled spots on the holes model (automatic budget, 4x4 tiles):
 // the correlation between a spot's area and the mean |H| under it, at
 // strengths 0, 1 and 2. Measured (seed 1): -0.16 (100 spots), -0.45 (413),
-// -0.16 (512, many merged into a labyrinth: CV 2.7), before curvatureScale
-// was normalised to keep the mean rate. Too slow for the suite (6 minutes and
+// -0.16 (512, many merged into a labyrinth: CV 2.7), with the shrink-only
+// curvatureScale. Too slow for the suite (6 minutes and
 // more on 2 cores: the smallest texels set the substeps, tens per step) and
 // not monotonic in the strength, so it is disabled; run it with
 // --gtest_also_run_disabled_tests to print the numbers.
