@@ -17,9 +17,9 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/base/errors.hpp"
-#include "core/io/output_files.hpp"
 #include "core/base/json_input.hpp"
 #include "core/base/limits.hpp"
+#include "core/io/output_files.hpp"
 
 namespace morphogen {
 
