@@ -5,10 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <sstream>
 
 #include <Eigen/Geometry>
 #include <tiny_gltf.h>
+
+#include "core/mesh/gltf_output.hpp"
 
 #include "core/base/errors.hpp"
 #include "core/mesh/mesh_formats.hpp"
@@ -352,107 +353,42 @@ TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info) 
     return mesh;
 }
 
-namespace {
-
-// Appends `bytes` to the buffer (4-byte aligned) and returns its view.
-int addView(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {
-    std::vector<unsigned char>& data = model.buffers[0].data;
-    while (data.size() % 4 != 0)
-        data.push_back(0);
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = data.size();
-    view.byteLength = size;
-    view.target = target;
-    const auto* p = static_cast<const unsigned char*>(bytes);
-    data.insert(data.end(), p, p + size);
-    model.bufferViews.push_back(view);
-    return int(model.bufferViews.size() - 1);
-}
-
-int addAccessor(tinygltf::Model& model, int view, int componentType, int type, std::size_t count) {
-    tinygltf::Accessor a;
-    a.bufferView = view;
-    a.componentType = componentType;
-    a.type = type;
-    a.count = count;
-    model.accessors.push_back(a);
-    return int(model.accessors.size() - 1);
-}
-
-} // namespace
-
 } // namespace morphogen::mesh_formats
 
 namespace morphogen {
 
 void writeGlb(const TriangleMesh& mesh, const MeshAttributes& attributes, const std::string& path,
               const Eigen::Vector4d& rotation, double scale) {
-    using mesh_formats::addAccessor;
-    using mesh_formats::addView;
     const std::size_t n = mesh.positions.size();
     if (!attributes.normals.empty() && attributes.normals.size() != n)
         throw std::invalid_argument("writeGlb: one normal per position");
     if (!attributes.texcoords.empty() && attributes.texcoords.size() != n)
         throw std::invalid_argument("writeGlb: one texture coordinate per position");
 
-    tinygltf::Model model;
-    model.asset.version = "2.0";
-    model.asset.generator = "morphogen";
-    model.buffers.emplace_back();
+    tinygltf::Model model = gltf::newModel();
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
-
-    const int indexView =
-        addView(model, mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]),
-                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    prim.indices = addAccessor(model, indexView, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                               TINYGLTF_TYPE_SCALAR, 3 * mesh.triangles.size());
-
-    const int positionView = addView(model, mesh.positions.data(), n * sizeof(Eigen::Vector3f),
-                                     TINYGLTF_TARGET_ARRAY_BUFFER);
-    const int positions =
-        addAccessor(model, positionView, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
-    // POSITION's min and max are required by the specification.
-    const Bounds box = boundsOf(mesh.positions);
-    model.accessors[std::size_t(positions)].minValues = {box.min.x(), box.min.y(), box.min.z()};
-    model.accessors[std::size_t(positions)].maxValues = {box.max.x(), box.max.y(), box.max.z()};
-    prim.attributes["POSITION"] = positions;
-    if (!attributes.normals.empty()) {
-        const int view = addView(model, attributes.normals.data(), n * sizeof(Eigen::Vector3f),
-                                 TINYGLTF_TARGET_ARRAY_BUFFER);
-        prim.attributes["NORMAL"] =
-            addAccessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
-    }
-    if (!attributes.texcoords.empty()) {
-        const int view = addView(model, attributes.texcoords.data(), n * sizeof(Eigen::Vector2f),
-                                 TINYGLTF_TARGET_ARRAY_BUFFER);
-        prim.attributes["TEXCOORD_0"] =
-            addAccessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, n);
-    }
-    while (model.buffers[0].data.size() % 4 != 0)
-        model.buffers[0].data.push_back(0);
+    const int indexView = gltf::addView(model, mesh.triangles.data(),
+                                        mesh.triangles.size() * sizeof(mesh.triangles[0]),
+                                        TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    prim.indices = gltf::addAccessor(model, indexView, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                                     TINYGLTF_TYPE_SCALAR, 3 * mesh.triangles.size());
+    gltf::addPositions(model, prim, mesh.positions);
+    if (!attributes.normals.empty())
+        gltf::addFloatAttribute(model, prim, "NORMAL", attributes.normals.data(),
+                                sizeof(Eigen::Vector3f), TINYGLTF_TYPE_VEC3, n);
+    if (!attributes.texcoords.empty())
+        gltf::addFloatAttribute(model, prim, "TEXCOORD_0", attributes.texcoords.data(),
+                                sizeof(Eigen::Vector2f), TINYGLTF_TYPE_VEC2, n);
 
     tinygltf::Mesh m;
     m.primitives.push_back(prim);
-    model.meshes.push_back(m);
     tinygltf::Node node;
-    node.mesh = 0;
     if (rotation != Eigen::Vector4d(0, 0, 0, 1))
         node.rotation = {rotation[0], rotation[1], rotation[2], rotation[3]};
     if (scale != 1.0)
         node.scale = {scale, scale, scale};
-    model.nodes.push_back(node);
-    tinygltf::Scene scene;
-    scene.nodes = {0};
-    model.scenes.push_back(scene);
-    model.defaultScene = 0;
-
-    std::ostringstream bytes;
-    tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToStream(&model, bytes, false, true))
-        throw InputError(path + ": could not encode the GLB");
-    writeFileAtomically(path, bytes.str());
+    gltf::writeModel(model, std::move(m), std::move(node), path);
 }
 
 } // namespace morphogen

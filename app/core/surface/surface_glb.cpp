@@ -5,43 +5,18 @@
 #include "core/surface/surface_glb.hpp"
 
 #include <cstring>
-#include <sstream>
 #include <stdexcept>
 
 #include <stb/stb_image_write.h>
 #include <tiny_gltf.h>
 
 #include "core/base/errors.hpp"
+#include "core/mesh/gltf_output.hpp"
 #include "core/mesh/mesh_io.hpp"
 
 namespace morphogen {
 
 namespace {
-
-int addView(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {
-    std::vector<unsigned char>& data = model.buffers[0].data;
-    while (data.size() % 4 != 0)
-        data.push_back(0);
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = data.size();
-    view.byteLength = size;
-    view.target = target;
-    const auto* p = static_cast<const unsigned char*>(bytes);
-    data.insert(data.end(), p, p + size);
-    model.bufferViews.push_back(view);
-    return int(model.bufferViews.size() - 1);
-}
-
-int addAccessor(tinygltf::Model& model, int view, int componentType, int type, std::size_t count) {
-    tinygltf::Accessor a;
-    a.bufferView = view;
-    a.componentType = componentType;
-    a.type = type;
-    a.count = count;
-    model.accessors.push_back(a);
-    return int(model.accessors.size() - 1);
-}
 
 void appendBytes(void* context, void* data, int size) {
     auto* out = static_cast<std::vector<unsigned char>*>(context);
@@ -59,7 +34,7 @@ int addPngTexture(tinygltf::Model& model, const RgbaImage& image, const std::str
     tinygltf::Image gltfImage;
     gltfImage.name = name;
     gltfImage.mimeType = "image/png";
-    gltfImage.bufferView = addView(model, png.data(), png.size(), 0);
+    gltfImage.bufferView = gltf::addView(model, png.data(), png.size(), 0);
     model.images.push_back(gltfImage);
     tinygltf::Texture texture;
     texture.name = name;
@@ -124,32 +99,22 @@ void writeTexturedGlb(const TexturedMesh& mesh, const std::string& path) {
         throw std::invalid_argument("writeTexturedGlb: every vertex needs a normal, a tangent "
                                     "and a texture coordinate");
 
-    tinygltf::Model model;
-    model.asset.version = "2.0";
-    model.asset.generator = "morphogen";
-    model.buffers.emplace_back();
+    tinygltf::Model model = gltf::newModel();
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.indices = addAccessor(
+    prim.indices = gltf::addAccessor(
         model,
-        addView(model, mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]),
-                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+        gltf::addView(model, mesh.triangles.data(),
+                      mesh.triangles.size() * sizeof(mesh.triangles[0]),
+                      TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, 3 * mesh.triangles.size());
-    auto attribute = [&](const char* name, const void* data, std::size_t elementSize, int type) {
-        const int view = addView(model, data, n * elementSize, TINYGLTF_TARGET_ARRAY_BUFFER);
-        const int accessor = addAccessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, type, n);
-        prim.attributes[name] = accessor;
-        return accessor;
-    };
-    const int positions =
-        attribute("POSITION", mesh.positions.data(), sizeof(Eigen::Vector3f), TINYGLTF_TYPE_VEC3);
-    // POSITION's min and max are required by the specification.
-    const Bounds box = boundsOf(mesh.positions);
-    model.accessors[std::size_t(positions)].minValues = {box.min.x(), box.min.y(), box.min.z()};
-    model.accessors[std::size_t(positions)].maxValues = {box.max.x(), box.max.y(), box.max.z()};
-    attribute("NORMAL", mesh.normals.data(), sizeof(Eigen::Vector3f), TINYGLTF_TYPE_VEC3);
-    attribute("TEXCOORD_0", mesh.uvs.data(), sizeof(Eigen::Vector2f), TINYGLTF_TYPE_VEC2);
-    attribute("TANGENT", mesh.tangents.data(), sizeof(Eigen::Vector4f), TINYGLTF_TYPE_VEC4);
+    gltf::addPositions(model, prim, mesh.positions);
+    gltf::addFloatAttribute(model, prim, "NORMAL", mesh.normals.data(), sizeof(Eigen::Vector3f),
+                            TINYGLTF_TYPE_VEC3, n);
+    gltf::addFloatAttribute(model, prim, "TEXCOORD_0", mesh.uvs.data(), sizeof(Eigen::Vector2f),
+                            TINYGLTF_TYPE_VEC2, n);
+    gltf::addFloatAttribute(model, prim, "TANGENT", mesh.tangents.data(), sizeof(Eigen::Vector4f),
+                            TINYGLTF_TYPE_VEC4, n);
 
     tinygltf::Sampler sampler;
     sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
@@ -168,26 +133,10 @@ void writeTexturedGlb(const TexturedMesh& mesh, const std::string& path) {
     material.doubleSided = true;
     model.materials.push_back(material);
     prim.material = 0;
-    while (model.buffers[0].data.size() % 4 != 0)
-        model.buffers[0].data.push_back(0);
-
     tinygltf::Mesh gltfMesh;
     gltfMesh.name = "surface";
     gltfMesh.primitives.push_back(prim);
-    model.meshes.push_back(gltfMesh);
-    tinygltf::Node node;
-    node.mesh = 0;
-    model.nodes.push_back(node);
-    tinygltf::Scene scene;
-    scene.nodes = {0};
-    model.scenes.push_back(scene);
-    model.defaultScene = 0;
-
-    std::ostringstream bytes;
-    tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToStream(&model, bytes, false, true))
-        throw InputError(path + ": could not encode the GLB");
-    writeFileAtomically(path, bytes.str());
+    gltf::writeModel(model, std::move(gltfMesh), tinygltf::Node{}, path);
 }
 
 void exportSurfaceGlb(const SurfaceTiles& tiles, const std::vector<float>& height,
