@@ -6,27 +6,7 @@
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 
-# run(<expected exit code> <text stderr must contain or ""> args...)
-function(run expected needle)
-  execute_process(COMMAND ${MORPHOGEN} ${ARGN}
-    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err WORKING_DIRECTORY "${WORK}")
-  set(ok TRUE)
-  if(NOT rc EQUAL expected)
-    set(ok FALSE)
-  endif()
-  if(NOT needle STREQUAL "")
-    string(FIND "${err}" "${needle}" at)
-    if(at EQUAL -1)
-      set(ok FALSE)
-    endif()
-  endif()
-  if(ok)
-    message(STATUS "ok: morphogen ${ARGN}")
-  else()
-    message(SEND_ERROR "FAILED: morphogen ${ARGN}\n  want exit ${expected} and stderr containing '${needle}'\n  got exit ${rc}\n  stderr: ${err}")
-  endif()
-  set(last_stderr "${err}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/cli_run.cmake)
 
 # Small and quick: 300 tiles of 4 x 4 texels, a few hundred steps.
 set(small --tiles 300 --tile-size 4 --steps 300 --backend cpu --resolution 96x96)
