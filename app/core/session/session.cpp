@@ -334,7 +334,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
                        "param_maps",     "tiles",       "dt",
                        "steps",          "seed",        "init",
                        "colormap",       "height",      "length",
-                       "coarse_to_fine", "surface"});
+                       "coarse_to_fine", "surface",     "edits"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");
@@ -389,6 +389,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
         s.heightMaps = heightSpecFromJson(top, *height);
     if (const json* surface = top.find("surface"))
         s.surface = surfaceSpecFromJson(top, *surface);
+    if (const json* edits = top.find("edits"))
+        s.edits = liveEditsFromJson(top, *edits, s);
     return s;
 }
 
@@ -443,6 +445,8 @@ json sessionToJson(const Session& s) {
         j["height"] = heightSpecToJson(s.heightMaps);
     if (s.surface.active())
         j["surface"] = surfaceSpecToJson(s.surface);
+    if (!s.edits.empty())
+        j["edits"] = liveEditsToJson(s.edits);
     return j;
 }
 
@@ -695,6 +699,7 @@ void validateSession(const Session& s, const std::string& source) {
     validateSchedule(s, source);
     // A size override must keep a batched sweep's tiles whole.
     validateTiles(s, source);
+    checkLiveEdits(s, s.steps, source);
 }
 
 namespace {

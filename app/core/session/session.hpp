@@ -17,6 +17,7 @@
 #include "core/models/reaction_model.hpp"
 #include "core/session/cascade.hpp"
 #include "core/session/height_spec.hpp"
+#include "core/session/live_edit.hpp"
 #include "core/session/param_map.hpp"
 #include "core/session/surface_spec.hpp"
 #include "core/session/tile_grid.hpp"
@@ -102,6 +103,9 @@ struct Session {
     // Grow the pattern on a mesh's surface instead of the flat canvas (the
     // "surface" block; inactive by default).
     SurfaceSpec surface;
+    // Changes made while it ran (the designer's sliders and strokes), in step
+    // order; SessionRun applies each before its step.
+    std::vector<LiveEdit> edits;
     // Folder that relative paths in the session (images) resolve against; set
     // by loadSessionFile, not serialised.
     std::string baseDir;

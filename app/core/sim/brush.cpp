@@ -43,26 +43,6 @@ std::vector<std::array<int, 2>> axisPieces(int lo, int hi, int n, EdgeMode edges
 
 } // namespace
 
-std::string toString(BrushMode mode) {
-    switch (mode) {
-    case BrushMode::Add:
-        return "add";
-    case BrushMode::Remove:
-        return "remove";
-    case BrushMode::Set:
-        return "set";
-    case BrushMode::Hold:
-        return "hold";
-    case BrushMode::Release:
-        return "release";
-    case BrushMode::Randomise:
-        return "randomise";
-    case BrushMode::Paint:
-        return "paint";
-    }
-    return "?";
-}
-
 BrushRegion BrushRegion::disc(const Domain& domain, float centreX, float centreY, float radius,
                               float falloff) {
     if (!std::isfinite(centreX) || !std::isfinite(centreY))

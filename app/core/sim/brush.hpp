@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/domain/domain.hpp"
+#include "core/session/brush_mode.hpp"
 #include "core/session/session.hpp"
 
 namespace morphogen {
@@ -51,18 +52,6 @@ private:
     std::vector<CellRect> m_rects;
     int m_gridWidth = 0, m_gridHeight = 0;
 };
-
-enum class BrushMode {
-    Add,       // chemical += value * weight
-    Remove,    // chemical -= value * weight
-    Set,       // chemical -> value (blended by weight)
-    Hold,      // cells keep their values, exactly like frozen cells
-    Release,   // held cells evolve again
-    Randomise, // chemical += value * weight * noise, noise in [-1, 1) from seed (Lo's distort)
-    Paint,     // parameter `param` -> value per cell (blended by weight); a parameter that is a
-               // diffusion rate paints that chemical's diffusion-rate map
-};
-std::string toString(BrushMode mode);
 
 // One brush write. Chemical writes are clamped to the chemical's limits, as
 // a step would. Add, Remove, Set and Randomise change one chemical; Hold and

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -13,6 +14,7 @@
 #include "core/operators/stability.hpp"
 #include "core/session/cascade.hpp"
 #include "core/sim/initial_state.hpp"
+#include "core/sim/stroke_brush.hpp"
 
 namespace morphogen {
 
@@ -22,11 +24,13 @@ SessionRun::SessionRun(const Session& session, SimulatorFactory makeSimulator, i
     for (const Segment& s : m_segments)
         m_totalSteps += s.session.steps; // segmentsOf keeps the total within an int
     enterSegment(0);
+    applyDueEdits();
 }
 
 void SessionRun::enterSegment(std::size_t i) {
     m_index = i;
     m_stepsRun.push_back(0);
+    m_entry = m_segments[i];
     const Segment& segment = m_segments[i];
     const Session& part = segment.session;
     const ReactionModel& model = part.reactionModel();
@@ -113,10 +117,13 @@ bool SessionRun::inSettleSegment() const {
 int SessionRun::advance(int steps) {
     int run = 0;
     while (run < steps && !m_finished) {
+        // Edits due at a segment boundary apply in the segment just entered.
+        applyDueEdits();
         const int done = m_stepsRun[m_index];
         const int length = m_segments[m_index].session.steps;
-        // Stop at the next blow-up check, as runSimulation's chunks do.
-        int n = std::min(steps - run, length - done);
+        // Stop at the next blow-up check, as runSimulation's chunks do, and
+        // at the next recorded edit.
+        int n = std::min({steps - run, length - done, stepsToNextEdit()});
         if (m_checkEvery > 0)
             n = std::min(n, m_checkEvery - done % m_checkEvery);
         const bool settling = inSettleSegment();
@@ -130,6 +137,10 @@ int SessionRun::advance(int steps) {
         const bool end = now == length;
         const bool blowUpCheck = m_checkEvery > 0 && now % m_checkEvery == 0;
         const bool settleCheck = settling && !end && now % m_settleEvery == 0;
+        // The session's last step: edits recorded at its end (a stroke after
+        // the last step a designer ran) apply before the result is taken.
+        if (end && m_index + 1 == m_segments.size())
+            applyDueEdits();
         if (end || blowUpCheck || settleCheck) {
             const int before = m_checkEvery > 0 ? (now - 1) / m_checkEvery * m_checkEvery : 0;
             checkBlowUp(before);
@@ -142,6 +153,130 @@ int SessionRun::advance(int steps) {
         }
     }
     return run;
+}
+
+long long SessionRun::segmentStartStep() const {
+    long long steps = 0;
+    for (std::size_t i = 0; i < m_index && i < m_stepsRun.size(); ++i)
+        steps += m_stepsRun[i] / m_segments[i].substeps;
+    return steps;
+}
+
+long long SessionRun::sessionStepsDone() const {
+    return segmentStartStep() + m_stepsRun[m_index] / m_segments[m_index].substeps;
+}
+
+int SessionRun::stepsToNextEdit() const {
+    const std::vector<LiveEdit>& own = m_session.edits;
+    if (m_nextEdit >= own.size())
+        return std::numeric_limits<int>::max();
+    const long long target =
+        (own[m_nextEdit].step - segmentStartStep()) * m_segments[m_index].substeps;
+    const long long left = target - m_stepsRun[m_index];
+    // Past the segment's end the segment length stops the chunk first.
+    return left > 0 ? int(std::min<long long>(left, std::numeric_limits<int>::max()))
+                    : std::numeric_limits<int>::max();
+}
+
+void SessionRun::applyDueEdits() {
+    const std::vector<LiveEdit>& own = m_session.edits;
+    if (m_finished || m_nextEdit >= own.size() || m_stepsRun[m_index] % substeps() != 0)
+        return;
+    const long long now = sessionStepsDone();
+    while (m_nextEdit < own.size() && own[m_nextEdit].step <= now) {
+        applyNow(own[m_nextEdit]);
+        m_applied.push_back(own[m_nextEdit]);
+        ++m_nextEdit;
+    }
+}
+
+void SessionRun::applyNow(const LiveEdit& edit) {
+    if (!edit.params.empty())
+        setParams(edit.params);
+    if (edit.dt)
+        setDt(*edit.dt);
+    if (edit.stroke) {
+        const Session& part = segmentSession();
+        m_simulator->applyBrush(strokeBrush(*edit.stroke, part.reactionModel(), part.domain()));
+    }
+}
+
+void SessionRun::applyEdit(LiveEdit edit) {
+    if (m_finished)
+        throw InputError("the run has finished: there is nothing left to edit");
+    edit.step = sessionStepsDone();
+    // Checked before anything changes, so a refused edit leaves the run as it was.
+    const Session& part = segmentSession();
+    Brush brush;
+    if (edit.stroke)
+        brush = strokeBrush(*edit.stroke, part.reactionModel(), part.domain());
+    if (edit.dt && (!(*edit.dt > 0) || !std::isfinite(*edit.dt)))
+        throw InputError("dt " + std::to_string(*edit.dt) + " is not a positive time step");
+    if (!edit.params.empty())
+        setParams(edit.params);
+    if (edit.dt)
+        setDt(*edit.dt);
+    if (edit.stroke)
+        m_simulator->applyBrush(brush);
+    m_applied.push_back(std::move(edit));
+}
+
+RunCheckpoint SessionRun::checkpoint() const {
+    RunCheckpoint c;
+    c.index = m_index;
+    c.stepsRun = m_stepsRun;
+    c.stepsDone = m_stepsDone;
+    c.finished = m_finished;
+    c.segments = m_segments;
+    c.entry = m_entry;
+    c.frozen = m_frozen;
+    c.state = state();
+    c.applied = m_applied.size();
+    c.nextEdit = m_nextEdit;
+    c.stateModel = m_stateModel;
+    return c;
+}
+
+void SessionRun::restore(const RunCheckpoint& c) {
+    assert(c.applied <= m_applied.size() && c.segments.size() == m_segments.size());
+    m_index = c.index;
+    m_stepsRun = c.stepsRun;
+    m_stepsDone = c.stepsDone;
+    m_segments = c.segments;
+    m_entry = c.entry;
+    m_frozen = c.frozen;
+    m_stateModel = c.stateModel;
+    m_nextEdit = c.nextEdit;
+    m_applied.resize(c.applied);
+    m_settledEarly = false;
+    m_simulator.reset();
+    if (c.finished) {
+        m_finished = true;
+        m_state = c.state;
+        return;
+    }
+    m_finished = false;
+    m_state = State();
+    // The segment as entered, then every edit made in it but the chemical
+    // strokes (the state holds those): parameters, dt, painted maps and held
+    // cells come back as they were made, in order (a map painted before a
+    // parameter change starts from the old value).
+    m_segments[m_index] = m_entry;
+    m_simulator = m_make(m_entry.session);
+    m_simulator->setFrozen(m_frozen);
+    const long long start = segmentStartStep();
+    for (const LiveEdit& e : m_applied) {
+        if (e.step < start)
+            continue;
+        LiveEdit replay = e;
+        if (replay.stroke && writesChemical(replay.stroke->mode))
+            replay.stroke.reset();
+        applyNow(replay);
+    }
+    // What later levels had taken from live changes.
+    for (std::size_t i = m_index + 1; i < m_segments.size(); ++i)
+        m_segments[i] = c.segments[i];
+    m_simulator->setState(c.state);
 }
 
 void SessionRun::endSegment() {
@@ -216,6 +351,18 @@ Session SessionRun::completed() const {
         // current level and those after it).
         done.params = segmentSession().params;
         done.dt = m_segments[m_index].sessionDt;
+    }
+    // With edits, they are the record of live changes: the session starts
+    // from its own values and replays them (a change by setParams outside an
+    // edit is not recorded then).
+    done.edits = m_applied;
+    if (!m_applied.empty()) {
+        done.params = m_session.params;
+        done.dt = m_session.dt;
+        for (std::size_t i = 0; i < done.stages.size(); ++i) {
+            done.stages[i].params = m_session.stages[i].params;
+            done.stages[i].dt = m_session.stages[i].dt;
+        }
     }
     return done;
 }

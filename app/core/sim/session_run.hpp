@@ -26,6 +26,23 @@ struct RunPosition {
     bool finished = false; // every segment has run all its steps
 };
 
+// A run's position and everything needed to go back to it
+// (SessionRun::checkpoint/restore): the designer's undo and growth history.
+// It holds a copy of the state.
+struct RunCheckpoint {
+    std::size_t index = 0;
+    std::vector<int> stepsRun;
+    int stepsDone = 0;
+    bool finished = false;
+    std::vector<Segment> segments; // as at the checkpoint (later levels' live values)
+    Segment entry;                 // the current segment as it was entered
+    std::vector<std::uint8_t> frozen;
+    State state;
+    std::size_t applied = 0;  // edits applied so far (a prefix of SessionRun::edits())
+    std::size_t nextEdit = 0; // the session's own edits still to come
+    const ReactionModel* stateModel = nullptr;
+};
+
 // A session advanced step by step: cascade stages and schedule levels are
 // positions in it, so a batch render, the bench and an interactive frame loop
 // run the same code with the same results. Between advances a caller may read
@@ -97,12 +114,44 @@ public:
     // chemicals; its steps are ignored (the segment keeps its length).
     void replaceSession(const Session& session);
 
+    // Session steps run so far over every segment (position() counts
+    // simulator steps, which are substeps on a grid finer than one cell per
+    // unit): the clock of live edits.
+    long long sessionStepsDone() const;
+    // The current segment's simulator steps per session step: advance by
+    // multiples of it to stay on session steps, where edits are recorded.
+    int substeps() const { return m_segments[m_index].substeps; }
+
+    // Applies a live edit now (parameters, dt, then the stroke) and records
+    // it at sessionStepsDone(), so that completed() reproduces it. Throws
+    // InputError for an edit the current model refuses, leaving the run as
+    // it was; or when the run has finished.
+    void applyEdit(LiveEdit edit);
+    // The edits applied so far, the session's own and applyEdit's, in order.
+    const std::vector<LiveEdit>& edits() const { return m_applied; }
+
+    // The run as it is now, and a return to such a moment (the same run: a
+    // checkpoint of another SessionRun is a programmer error). Restoring
+    // gives back the state bit for bit, the position, the parameters and dt
+    // in force, the painted maps and held cells (replayed from the edits),
+    // and forgets the edits recorded after it.
+    RunCheckpoint checkpoint() const;
+    void restore(const RunCheckpoint& checkpoint);
+
 private:
     void enterSegment(std::size_t index);
     // Reads the simulator's state in place (Simulator::insaneValue).
     void checkBlowUp(int before) const;
     bool inSettleSegment() const;
     void finishSegment(State state);
+    // Applies the session's own edits that are due at sessionStepsDone().
+    void applyDueEdits();
+    // Applies an edit without recording it.
+    void applyNow(const LiveEdit& edit);
+    // Simulator steps of the current segment until the next own edit is due
+    // (INT_MAX when none is due in it).
+    int stepsToNextEdit() const;
+    long long segmentStartStep() const; // session steps before the current segment
     RunResult resultWith(State state) const;
 
     Session m_session;
@@ -124,6 +173,9 @@ private:
     int m_settleAfter = 0;
     std::function<bool(const State&)> m_settled;
     bool m_settledEarly = false;
+    Segment m_entry;            // the current segment as entered (restore starts from it)
+    std::size_t m_nextEdit = 0; // into m_session.edits
+    std::vector<LiveEdit> m_applied;
 };
 
 } // namespace morphogen

@@ -1,0 +1,218 @@
+#include "core/session/live_edit.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "core/base/errors.hpp"
+#include "core/base/json_fields.hpp"
+#include "core/base/limits.hpp"
+#include "core/base/names.hpp"
+#include "core/models/reaction_model.hpp"
+#include "core/session/session.hpp"
+
+namespace morphogen {
+
+namespace {
+
+using nlohmann::json;
+
+// Strokes longer than this are a designer bug or a hostile file: a drag
+// records a few points per frame.
+constexpr std::size_t kMaxStrokePoints = 100000;
+constexpr std::size_t kMaxLiveEdits = 1000000;
+// Brush amounts: chemical values are clamped to the model's range anyway.
+constexpr double kMaxBrushValue = 1e6;
+
+// The models whose names an edit may use: the session's and every model its
+// stages switch to (an edit's step decides which one runs, and the run
+// refuses a name the model in force lacks).
+std::vector<const ReactionModel*> sessionModels(const Session& s) {
+    std::vector<const ReactionModel*> models{&s.reactionModel()};
+    for (const Stage& stage : s.stages)
+        if (!stage.model.empty())
+            if (const ReactionModel* m = findModel(stage.model))
+                models.push_back(m);
+    return models;
+}
+
+std::string acceptedNames(const std::vector<const ReactionModel*>& models, bool chemicals) {
+    std::set<std::string> names;
+    for (const ReactionModel* m : models)
+        for (const std::string& n : splitNameList(chemicals ? m->chemicalNames() : m->paramNames()))
+            names.insert(n);
+    std::string list;
+    for (const std::string& n : names)
+        list += (list.empty() ? "" : ", ") + n;
+    return list;
+}
+
+const ParamSpec* findParam(const std::vector<const ReactionModel*>& models,
+                           const std::string& name) {
+    for (const ReactionModel* m : models)
+        if (const ParamSpec* p = m->param(name))
+            return p;
+    return nullptr;
+}
+
+StrokeSpec strokeFromJson(const FieldReader& edit, const json& block,
+                          const std::vector<const ReactionModel*>& models) {
+    FieldReader reader(block, edit.source(), edit.path("stroke"));
+    reader.rejectUnknown(
+        {"mode", "chemical", "param", "value", "seed", "points", "radius", "falloff"});
+    StrokeSpec s;
+    if (!reader.find("mode"))
+        reader.failField("mode", "is missing (accepted: " + brushModeNames() + ")");
+    s.mode = reader.choice("mode", s.mode, parseBrushMode, brushModeNames());
+    s.value = float(reader.number("value", 0.0, -kMaxBrushValue, kMaxBrushValue));
+    s.seed = std::uint64_t(reader.integer("seed", 0, 0, kMaxSeed));
+    s.radius = reader.number("radius", s.radius, 1e-6, 1.0);
+    s.falloff = reader.number("falloff", s.falloff, 0.0, 1.0);
+    if (writesChemical(s.mode)) {
+        s.chemical = reader.string("chemical", "");
+        const std::string accepted = acceptedNames(models, true);
+        if (s.chemical.empty())
+            reader.failField("chemical", "is missing: mode '" + toString(s.mode) +
+                                             "' writes a chemical (accepted: " + accepted + ")");
+        if (std::find_if(models.begin(), models.end(), [&](const ReactionModel* m) {
+                return m->chemicalIndex(s.chemical) >= 0;
+            }) == models.end())
+            reader.failField("chemical", "is '" + s.chemical + "', not a chemical of the model " +
+                                             "(accepted: " + accepted + ")" +
+                                             didYouMean(s.chemical, splitNameList(accepted)));
+    } else if (reader.find("chemical")) {
+        reader.failField("chemical", "is not used by mode '" + toString(s.mode) + "'");
+    }
+    if (s.mode == BrushMode::Paint) {
+        s.param = reader.string("param", "");
+        const std::string accepted = acceptedNames(models, false);
+        const ParamSpec* p = findParam(models, s.param);
+        if (!p)
+            reader.failField("param", "is '" + s.param + "', not a parameter of the model " +
+                                          "(accepted: " + accepted + ")" +
+                                          didYouMean(s.param, splitNameList(accepted)));
+        s.value = float(reader.number("value", 0.0, p->min, p->max));
+    } else if (reader.find("param")) {
+        reader.failField("param", "is only used by mode 'paint'");
+    }
+    const json* points = reader.find("points");
+    const std::string expected =
+        "must be a non-empty array of [x, y] canvas fractions (0..1; -1..2 wraps on periodic "
+        "edges)";
+    if (!points || !points->is_array() || points->empty() || points->size() > kMaxStrokePoints)
+        reader.failField("points", expected);
+    for (const json& p : *points) {
+        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+            reader.failField("points", expected + ", got " + p.dump());
+        const double x = p[0].get<double>(), y = p[1].get<double>();
+        if (!(x >= -1.0 && x <= 2.0 && y >= -1.0 && y <= 2.0))
+            reader.failField("points", expected + ", got " + p.dump());
+        s.points.push_back({x, y});
+    }
+    return s;
+}
+
+json strokeToJson(const StrokeSpec& s) {
+    json j;
+    j["mode"] = toString(s.mode);
+    if (writesChemical(s.mode))
+        j["chemical"] = s.chemical;
+    if (s.mode == BrushMode::Paint)
+        j["param"] = s.param;
+    if (s.mode != BrushMode::Hold && s.mode != BrushMode::Release)
+        j["value"] = s.value;
+    if (s.mode == BrushMode::Randomise)
+        j["seed"] = s.seed;
+    j["radius"] = s.radius;
+    j["falloff"] = s.falloff;
+    j["points"] = json::array();
+    for (const auto& p : s.points)
+        j["points"].push_back({p[0], p[1]});
+    return j;
+}
+
+} // namespace
+
+bool StrokeSpec::operator==(const StrokeSpec& o) const {
+    return mode == o.mode && chemical == o.chemical && param == o.param && value == o.value &&
+           seed == o.seed && points == o.points && radius == o.radius && falloff == o.falloff;
+}
+
+bool LiveEdit::operator==(const LiveEdit& o) const {
+    return step == o.step && params == o.params && dt == o.dt && stroke == o.stroke;
+}
+
+std::vector<LiveEdit> liveEditsFromJson(const FieldReader& top, const json& array,
+                                        const Session& session) {
+    if (!array.is_array() || array.size() > kMaxLiveEdits)
+        top.failField("edits", "must be an array of edits ({\"step\": N, \"params\": {...}, "
+                               "\"dt\": X, \"stroke\": {...}})");
+    const std::vector<const ReactionModel*> models = sessionModels(session);
+    std::vector<LiveEdit> edits;
+    for (std::size_t i = 0; i < array.size(); ++i) {
+        FieldReader reader(array[i], top.source(), "edits[" + std::to_string(i) + "]");
+        reader.rejectUnknown({"step", "params", "dt", "stroke"});
+        LiveEdit e;
+        if (!reader.find("step"))
+            reader.failField("step", "is missing (the session step before which it applies)");
+        e.step = reader.integer("step", 0, 0, kMaxSteps);
+        if (!edits.empty() && e.step < edits.back().step)
+            reader.failField("step", "is " + std::to_string(e.step) + ", before the edit ahead " +
+                                         "of it (step " + std::to_string(edits.back().step) +
+                                         "): edits are in step order");
+        if (const json* params = reader.find("params")) {
+            FieldReader p(*params, top.source(), reader.path("params"));
+            for (auto it = params->begin(); it != params->end(); ++it) {
+                const ParamSpec* spec = findParam(models, it.key());
+                if (!spec) {
+                    const std::string accepted = acceptedNames(models, false);
+                    p.failField(it.key(), "is not a parameter of the model (accepted: " + accepted +
+                                              ")" + didYouMean(it.key(), splitNameList(accepted)));
+                }
+                e.params[it.key()] = float(p.numberValue(*it, it.key(), spec->min, spec->max));
+            }
+        }
+        if (reader.find("dt"))
+            e.dt = float(reader.number("dt", 1.0, kMinDt, kMaxDt));
+        if (const json* stroke = reader.find("stroke"))
+            e.stroke = strokeFromJson(reader, *stroke, models);
+        edits.push_back(std::move(e));
+    }
+    return edits;
+}
+
+json liveEditsToJson(const std::vector<LiveEdit>& edits) {
+    json array = json::array();
+    for (const LiveEdit& e : edits) {
+        json j;
+        j["step"] = e.step;
+        if (!e.params.empty())
+            j["params"] = e.params;
+        if (e.dt)
+            j["dt"] = *e.dt;
+        if (e.stroke)
+            j["stroke"] = strokeToJson(*e.stroke);
+        array.push_back(std::move(j));
+    }
+    return array;
+}
+
+void checkLiveEdits(const Session& s, long long totalSteps, const std::string& source) {
+    if (s.edits.empty())
+        return;
+    if (s.edits.back().step > totalSteps)
+        throw InputError(source + ": edit at step " + std::to_string(s.edits.back().step) +
+                         " comes after the session's last step (" + std::to_string(totalSteps) +
+                         "): edits apply before a step the session runs, or at its end");
+    const bool strokes = std::any_of(s.edits.begin(), s.edits.end(),
+                                     [](const LiveEdit& e) { return e.stroke.has_value(); });
+    if (strokes && s.surface.active())
+        throw InputError(source + ": brush strokes in \"edits\" address the flat canvas; a "
+                                  "session on a surface (\"surface\") cannot hold them yet");
+    if (!s.edits.empty() && s.tiles.active())
+        throw InputError(source + ": \"edits\" do not combine with \"tiles\" (a batched sweep "
+                                  "sets its parameters per tile)");
+}
+
+} // namespace morphogen

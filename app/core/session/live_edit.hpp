@@ -1,0 +1,65 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "core/session/brush_mode.hpp"
+
+namespace morphogen {
+
+class FieldReader;
+class ReactionModel;
+struct Session;
+using ParamValues = std::map<std::string, float>;
+
+// A brush stroke as a session records it. Positions and radius are fractions
+// of the canvas, so a stroke lands on the same part of the pattern at any
+// --size (the canvas holds the same pattern at every resolution).
+struct StrokeSpec {
+    BrushMode mode = BrushMode::Add;
+    std::string chemical;   // add, remove, set, randomise
+    std::string param;      // paint
+    float value = 0.0f;     // amount (add, remove, randomise) or target (set, paint)
+    std::uint64_t seed = 0; // randomise
+    // The path: x across the width, y down the rows as the state stores them,
+    // 0..1 over the canvas (periodic edges wrap points outside it). One point
+    // is a dab; consecutive points are joined by a swept disc.
+    std::vector<std::array<double, 2>> points;
+    double radius = 0.02; // fraction of the canvas width
+    double falloff = 0.5; // outer fraction of the radius that ramps down to 0
+
+    bool operator==(const StrokeSpec& o) const;
+};
+
+// A change made while the session ran (the designer's sliders and brushes),
+// recorded so that the session reproduces the run: before session step
+// `step` (counted over the whole session, cascade stages included), set the
+// parameters and dt it holds and apply its stroke, in that order.
+struct LiveEdit {
+    long long step = 0;
+    ParamValues params;      // the parameters it changes; the others keep their values
+    std::optional<float> dt; // a new session time step
+    std::optional<StrokeSpec> stroke;
+
+    bool operator==(const LiveEdit& o) const;
+};
+
+// The "edits" array of a session. Errors name `top`'s source and the field.
+// Checked here: the fields and their ranges, steps that do not decrease,
+// parameter and chemical names of the session's model (or of any model its
+// stages switch to). The step bound and the domain are validateSession's.
+std::vector<LiveEdit> liveEditsFromJson(const FieldReader& top, const nlohmann::json& array,
+                                        const Session& session);
+nlohmann::json liveEditsToJson(const std::vector<LiveEdit>& edits);
+
+// validateSession's part: edits after the session's last step, and strokes on
+// a domain they cannot address (a surface, a batched sweep), are refused.
+void checkLiveEdits(const Session& session, long long totalSteps, const std::string& source);
+
+} // namespace morphogen

@@ -1,0 +1,290 @@
+// Live edits (core/session/live_edit.hpp) on the CPU backend: a session's
+// "edits" read and write back, bad ones are refused by field; a run with
+// edits recorded by applyEdit, saved through completed() and replayed from
+// the JSON, ends in the same state bit for bit; strokes change only the
+// cells they cover; checkpoints restore a run exactly.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/base/errors.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "core/sim/session_run.hpp"
+#include "core/sim/stroke_brush.hpp"
+#include "test_support.hpp"
+
+using namespace morphogen;
+
+namespace {
+
+SimulatorFactory cpu() {
+    return [](const Session& s) { return std::make_unique<CpuSimulator>(s); };
+}
+
+Session smallCoral(int steps = 120) {
+    Session s = loadPreset("gs_coral");
+    s.width = s.height = 48;
+    s.coarseToFine = false;
+    s.steps = steps;
+    return s;
+}
+
+StrokeSpec dab(double x, double y, const std::string& chemical = "v", float value = 0.5f) {
+    StrokeSpec s;
+    s.mode = BrushMode::Add;
+    s.chemical = chemical;
+    s.value = value;
+    s.points = {{x, y}};
+    s.radius = 0.1;
+    s.falloff = 0.5;
+    return s;
+}
+
+Session fromJson(const nlohmann::json& j) {
+    Session s = sessionFromJson(j, "edits.json");
+    validateSession(s, "edits.json");
+    return s;
+}
+
+std::string refusal(const nlohmann::json& j) {
+    try {
+        fromJson(j);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST(LiveEdit, JsonRoundTrip) {
+    Session s = smallCoral();
+    LiveEdit a;
+    a.step = 10;
+    a.params["F"] = 0.05f;
+    a.dt = 0.5f;
+    LiveEdit b;
+    b.step = 40;
+    b.stroke = dab(0.25, 0.75);
+    b.stroke->points.push_back({0.5, 0.5});
+    LiveEdit c;
+    c.step = 40;
+    c.stroke = StrokeSpec{};
+    c.stroke->mode = BrushMode::Paint;
+    c.stroke->param = "k";
+    c.stroke->value = 0.061f;
+    c.stroke->points = {{0.1, 0.1}};
+    s.edits = {a, b, c};
+    const nlohmann::json j = sessionToJson(s);
+    const Session back = fromJson(j);
+    ASSERT_EQ(back.edits.size(), 3u);
+    EXPECT_TRUE(back.edits[0] == a);
+    EXPECT_TRUE(back.edits[1] == b);
+    EXPECT_TRUE(back.edits[2] == c);
+    EXPECT_EQ(sessionToJson(back), j);
+}
+
+TEST(LiveEdit, BadEditsAreRefusedByField) {
+    nlohmann::json base = sessionToJson(smallCoral());
+    auto with = [&](nlohmann::json edits) {
+        nlohmann::json j = base;
+        j["edits"] = std::move(edits);
+        return refusal(j);
+    };
+    EXPECT_NE(with(nlohmann::json::object()).find("field 'edits' must be an array"),
+              std::string::npos);
+    EXPECT_NE(with({{{"params", {{"F", 0.04}}}}}).find("edits[0].step' is missing"),
+              std::string::npos);
+    EXPECT_NE(with({{{"step", 5}}, {{"step", 2}}}).find("edits are in step order"),
+              std::string::npos);
+    EXPECT_NE(with({{{"step", 500}}}).find("after the session's last step (120)"),
+              std::string::npos);
+    const std::string unknown = with({{{"step", 1}, {"params", {{"G", 0.04}}}}});
+    EXPECT_NE(unknown.find("edits[0].params.G' is not a parameter of the model (accepted: "),
+              std::string::npos)
+        << unknown;
+    EXPECT_NE(with({{{"step", 1}, {"params", {{"F", 7.0}}}}}).find("edits[0].params.F"),
+              std::string::npos);
+    const nlohmann::json stroke = {
+        {"mode", "add"}, {"chemical", "v"}, {"value", 0.5}, {"points", {{0.5, 0.5}}}};
+    auto strokeWith = [&](const std::string& key, nlohmann::json value) {
+        nlohmann::json st = stroke;
+        if (value.is_null())
+            st.erase(key);
+        else
+            st[key] = std::move(value);
+        return with({{{"step", 1}, {"stroke", st}}});
+    };
+    EXPECT_EQ(strokeWith("radius", 0.05), "");
+    EXPECT_NE(strokeWith("mode", "smudge").find("accepted: add, remove"), std::string::npos);
+    EXPECT_NE(strokeWith("chemical", "w").find("not a chemical of the model (accepted: u, v)"),
+              std::string::npos);
+    EXPECT_NE(strokeWith("chemical", nullptr).find("writes a chemical"), std::string::npos);
+    EXPECT_NE(strokeWith("radius", 0.0).find("stroke.radius' is 0"), std::string::npos);
+    EXPECT_NE(strokeWith("radius", -1.0).find("accepted range"), std::string::npos);
+    EXPECT_NE(strokeWith("points", nlohmann::json::array()).find("non-empty array"),
+              std::string::npos);
+    EXPECT_NE(strokeWith("points", {{0.5}}).find("got [0.5]"), std::string::npos);
+    EXPECT_NE(strokeWith("points", {{5.0, 0.5}}).find("got [5.0,0.5]"), std::string::npos);
+    EXPECT_NE(strokeWith("value", "lots").find("must be a number"), std::string::npos);
+    EXPECT_NE(strokeWith("param", "F").find("only used by mode 'paint'"), std::string::npos);
+}
+
+TEST(LiveEdit, StrokeRegionCoversTheSweptDisc) {
+    const Session s = smallCoral();
+    StrokeSpec line = dab(0.25, 0.5);
+    line.points.push_back({0.75, 0.5});
+    line.radius = 2.0 / 48.0; // two cells
+    line.falloff = 0;
+    const BrushRegion region = strokeRegion(line, s.domain());
+    // The segment runs from cell (11.5, 23.5) to (35.5, 23.5): rows 22..25 lie within 2 of it,
+    // rows 23 and 24 (0.5 away) over columns 10..37, rows 22 and 25 (1.5 away) over 11..36.
+    for (const BrushRegion::Cell& c : region.cells()) {
+        const int x = int(c.index % 48), y = int(c.index / 48);
+        EXPECT_GE(x, 10);
+        EXPECT_LE(x, 37);
+        EXPECT_GE(y, 22);
+        EXPECT_LE(y, 25);
+        EXPECT_EQ(c.weight, 1.0f);
+    }
+    EXPECT_EQ(region.cells().size(), std::size_t(2 * 28 + 2 * 26));
+}
+
+TEST(LiveEdit, StrokeChangesOnlyItsCells) {
+    const Session s = smallCoral(40);
+    SessionRun run(s, cpu(), 0);
+    run.advance(20);
+    const State before = run.state();
+    LiveEdit e;
+    e.stroke = dab(0.3, 0.6);
+    run.applyEdit(e);
+    const State after = run.state();
+    const BrushRegion region = strokeRegion(*e.stroke, s.domain());
+    std::vector<char> inRegion(std::size_t(48 * 48), 0);
+    for (const BrushRegion::Cell& c : region.cells())
+        inRegion[c.index] = 1;
+    int changed = 0;
+    for (int i = 0; i < 48 * 48; ++i) {
+        const bool differs = before.at(1, i % 48, i / 48) != after.at(1, i % 48, i / 48);
+        EXPECT_EQ(before.at(0, i % 48, i / 48), after.at(0, i % 48, i / 48));
+        if (!inRegion[std::size_t(i)])
+            EXPECT_FALSE(differs) << "cell " << i;
+        changed += differs;
+    }
+    EXPECT_GT(changed, int(region.cells().size()) / 2);
+    EXPECT_EQ(run.edits().size(), 1u);
+    EXPECT_EQ(run.edits()[0].step, 20);
+}
+
+TEST(LiveEdit, RecordedRunReplaysBitForBit) {
+    Session s = smallCoral(100000); // open-ended, as the designer runs it
+    SessionRun run(s, cpu(), 0);
+    run.advance(30);
+    LiveEdit a;
+    a.params["F"] = 0.045f;
+    run.applyEdit(a);
+    run.advance(25);
+    LiveEdit b;
+    b.stroke = dab(0.5, 0.5);
+    b.stroke->points.push_back({0.7, 0.4});
+    run.applyEdit(b);
+    LiveEdit c;
+    c.dt = 0.8f;
+    c.stroke = StrokeSpec{};
+    c.stroke->mode = BrushMode::Paint;
+    c.stroke->param = "k";
+    c.stroke->value = 0.058f;
+    c.stroke->points = {{0.2, 0.2}};
+    c.stroke->radius = 0.2;
+    run.advance(17);
+    run.applyEdit(c);
+    run.advance(40);
+    LiveEdit d;
+    d.stroke = dab(0.9, 0.1, "u", 0.3f);
+    d.stroke->mode = BrushMode::Remove;
+    run.applyEdit(d); // at the very end: applies before the replay's result
+    const State live = run.state();
+
+    Session saved = run.completed();
+    EXPECT_EQ(saved.steps, 112);
+    EXPECT_EQ(saved.params.at("F"), s.params.at("F")); // the edit, not the final value
+    ASSERT_EQ(saved.edits.size(), 4u);
+    EXPECT_EQ(saved.edits[3].step, 112);
+    const Session replayed = fromJson(sessionToJson(saved));
+    const RunResult again = runSession(replayed, cpu(), {});
+    EXPECT_EQ(test::maxAbsDifference(again.state, live), 0.0f);
+    // And the replay records the same edits.
+    EXPECT_EQ(sessionToJson(again.completed), sessionToJson(saved));
+
+    // Without the edits the run differs: the test can tell.
+    Session plain = saved;
+    plain.edits.clear();
+    EXPECT_GT(test::maxAbsDifference(runSession(plain, cpu(), {}).state, live), 0.01f);
+}
+
+TEST(LiveEdit, CheckpointRestoresTheRunExactly) {
+    Session s = smallCoral(100000);
+    SessionRun run(s, cpu(), 0);
+    run.advance(20);
+    LiveEdit paint;
+    paint.stroke = StrokeSpec{};
+    paint.stroke->mode = BrushMode::Paint;
+    paint.stroke->param = "F";
+    paint.stroke->value = 0.03f;
+    paint.stroke->points = {{0.5, 0.5}};
+    paint.stroke->radius = 0.25;
+    run.applyEdit(paint);
+    LiveEdit hold;
+    hold.stroke = StrokeSpec{};
+    hold.stroke->mode = BrushMode::Hold;
+    hold.stroke->points = {{0.2, 0.8}};
+    run.applyEdit(hold);
+    run.advance(10);
+    const RunCheckpoint mark = run.checkpoint();
+    const State atMark = run.state();
+
+    // Continue the original for 30 steps: the reference.
+    SessionRun reference(s, cpu(), 0);
+    reference.advance(20);
+    reference.applyEdit(paint);
+    reference.applyEdit(hold);
+    reference.advance(40);
+
+    // The run goes on differently, then goes back and repeats the reference's path.
+    LiveEdit other;
+    other.params["k"] = 0.05f;
+    other.stroke = dab(0.5, 0.5);
+    run.applyEdit(other);
+    run.advance(15);
+    run.restore(mark);
+    EXPECT_EQ(test::maxAbsDifference(run.state(), atMark), 0.0f);
+    EXPECT_EQ(run.sessionStepsDone(), 30);
+    EXPECT_EQ(run.edits().size(), 2u);
+    run.advance(30);
+    EXPECT_EQ(test::maxAbsDifference(run.state(), reference.state()), 0.0f);
+}
+
+TEST(LiveEdit, CascadeEditsReplayAcrossStages) {
+    Session s = loadPreset("turk_giraffe");
+    s.width = s.height = 32;
+    s.length = 0;
+    s.coarseToFine = false;
+    s.stages[0].steps = 60;
+    s.stages[1].steps = 40;
+    s.steps = 100;
+    SessionRun run(s, cpu(), 0);
+    run.advance(50);
+    LiveEdit a;
+    a.stroke = StrokeSpec{};
+    a.stroke->mode = BrushMode::Randomise;
+    a.stroke->chemical = run.segmentSession().reactionModel().chemicalNames().substr(0, 1);
+    a.stroke->value = 0.5f;
+    a.stroke->seed = 7;
+    a.stroke->points = {{0.4, 0.4}};
+    run.applyEdit(a);
+    run.advance(30); // into the second stage
+    const State live = run.state();
+    const Session saved = run.completed();
+    const RunResult again = runSession(fromJson(sessionToJson(saved)), cpu(), {});
+    EXPECT_EQ(test::maxAbsDifference(again.state, live), 0.0f);
+}
