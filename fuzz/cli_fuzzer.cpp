@@ -84,6 +84,7 @@ std::string parseApp(const std::vector<const char*>& argv) {
     cli::addSweepCommand(app);
     cli::addColourCommand(app);
     cli::addMeshCommands(app);
+    cli::addDesignCommand(app);
     try {
         app.parse(int(argv.size()), argv.data());
     } catch (const ParseOnlyApp::Parsed&) {

@@ -288,3 +288,34 @@ TEST(LiveEdit, CascadeEditsReplayAcrossStages) {
     const RunResult again = runSession(fromJson(sessionToJson(saved)), cpu(), {});
     EXPECT_EQ(test::maxAbsDifference(again.state, live), 0.0f);
 }
+
+TEST(LiveEdit, AStrokeDoesNotBuildUpOnItself) {
+    // A drag back and forth over the same place, recorded piece by piece,
+    // adds the amount once (an opacity brush); a second stroke adds it again.
+    Session s = smallCoral(100000);
+    s.init = InitialCondition{}; // a flat start: only the brush changes v
+    SessionRun run(s, cpu(), 0);
+    const float v0 = run.state().at(1, 24, 24);
+    StrokeSpec piece = dab(0.5, 0.5, "v", 0.1f);
+    piece.falloff = 0;
+    const std::vector<std::array<double, 2>> path = {
+        {0.5, 0.5}, {0.6, 0.5}, {0.4, 0.5}, {0.6, 0.5}, {0.5, 0.5}};
+    for (std::size_t i = 0; i < path.size(); ++i) {
+        LiveEdit e;
+        e.stroke = piece;
+        e.stroke->points = {path[i > 0 ? i - 1 : 0], path[i]};
+        e.stroke->continues = i > 0;
+        run.applyEdit(e);
+    }
+    const State once = run.state();
+    EXPECT_NEAR(once.at(1, 24, 23) - v0, 0.1f, 1e-6f);
+    // Replayed from the JSON: the same.
+    const Session saved = fromJson(sessionToJson(run.completed()));
+    SessionRun replay(saved, cpu(), 0);
+    EXPECT_EQ(test::maxAbsDifference(replay.state(), once), 0.0f);
+    // A new stroke over it builds up.
+    LiveEdit again;
+    again.stroke = piece;
+    run.applyEdit(again);
+    EXPECT_NEAR(run.state().at(1, 24, 23) - v0, 0.2f, 1e-6f);
+}

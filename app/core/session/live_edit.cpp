@@ -60,7 +60,7 @@ StrokeSpec strokeFromJson(const FieldReader& edit, const json& block,
                           const std::vector<const ReactionModel*>& models) {
     FieldReader reader(block, edit.source(), edit.path("stroke"));
     reader.rejectUnknown(
-        {"mode", "chemical", "param", "value", "seed", "points", "radius", "falloff"});
+        {"mode", "chemical", "param", "value", "seed", "points", "radius", "falloff", "continues"});
     StrokeSpec s;
     if (!reader.find("mode"))
         reader.failField("mode", "is missing (accepted: " + brushModeNames() + ")");
@@ -69,6 +69,7 @@ StrokeSpec strokeFromJson(const FieldReader& edit, const json& block,
     s.seed = std::uint64_t(reader.integer("seed", 0, 0, kMaxSeed));
     s.radius = reader.number("radius", s.radius, 1e-6, 1.0);
     s.falloff = reader.number("falloff", s.falloff, 0.0, 1.0);
+    s.continues = reader.boolean("continues", false);
     if (writesChemical(s.mode)) {
         s.chemical = reader.string("chemical", "");
         const std::string accepted = acceptedNames(models, true);
@@ -126,6 +127,8 @@ json strokeToJson(const StrokeSpec& s) {
         j["seed"] = s.seed;
     j["radius"] = s.radius;
     j["falloff"] = s.falloff;
+    if (s.continues)
+        j["continues"] = true;
     j["points"] = json::array();
     for (const auto& p : s.points)
         j["points"].push_back({p[0], p[1]});
@@ -136,7 +139,8 @@ json strokeToJson(const StrokeSpec& s) {
 
 bool StrokeSpec::operator==(const StrokeSpec& o) const {
     return mode == o.mode && chemical == o.chemical && param == o.param && value == o.value &&
-           seed == o.seed && points == o.points && radius == o.radius && falloff == o.falloff;
+           seed == o.seed && points == o.points && radius == o.radius && falloff == o.falloff &&
+           continues == o.continues;
 }
 
 bool LiveEdit::operator==(const LiveEdit& o) const {

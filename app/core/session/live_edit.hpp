@@ -33,6 +33,11 @@ struct StrokeSpec {
     std::vector<std::array<double, 2>> points;
     double radius = 0.02; // fraction of the canvas width
     double falloff = 0.5; // outer fraction of the radius that ramps down to 0
+    // The stroke goes on from the previous stroke edit (a drag recorded piece
+    // by piece as the cursor moves): a cell's chemical changes by at most the
+    // full amount over the whole stroke, however often the path crosses it,
+    // as an opacity brush in a paint program (a new stroke builds up on the last).
+    bool continues = false;
 
     bool operator==(const StrokeSpec& o) const;
 };

@@ -31,6 +31,7 @@ void SessionRun::enterSegment(std::size_t i) {
     m_index = i;
     m_stepsRun.push_back(0);
     m_entry = m_segments[i];
+    m_strokeCoverage.clear(); // cell indices of the last segment's grid
     const Segment& segment = m_segments[i];
     const Session& part = segment.session;
     const ReactionModel& model = part.reactionModel();
@@ -61,7 +62,12 @@ void SessionRun::enterSegment(std::size_t i) {
     m_simulator->setFrozen(m_frozen);
     // Segments of no steps (a stage that only freezes or resets) are done as
     // soon as they are entered.
-    if (part.steps == 0)
+    if (part.steps == 0 && i + 1 == m_segments.size() && !m_session.edits.empty()) {
+        // A session that ends here may still hold edits for its end (strokes
+        // on a canvas saved before any step ran).
+        applyDueEdits();
+        finishSegment(m_simulator->takeState());
+    } else if (part.steps == 0)
         finishSegment(m_state);
     else
         m_state = State(); // the simulator holds it now: one copy of the state, not two
@@ -155,6 +161,13 @@ int SessionRun::advance(int steps) {
     return run;
 }
 
+void SessionRun::setColormap(const ColorMapSpec& colormap) {
+    m_session.colormap = colormap;
+    for (Segment& segment : m_segments)
+        segment.session.colormap = colormap;
+    m_entry.session.colormap = colormap;
+}
+
 long long SessionRun::segmentStartStep() const {
     long long steps = 0;
     for (std::size_t i = 0; i < m_index && i < m_stepsRun.size(); ++i)
@@ -195,10 +208,19 @@ void SessionRun::applyNow(const LiveEdit& edit) {
         setParams(edit.params);
     if (edit.dt)
         setDt(*edit.dt);
-    if (edit.stroke) {
-        const Session& part = segmentSession();
-        m_simulator->applyBrush(strokeBrush(*edit.stroke, part.reactionModel(), part.domain()));
+    if (edit.stroke)
+        m_simulator->applyBrush(strokeWrite(*edit.stroke));
+}
+
+Brush SessionRun::strokeWrite(const StrokeSpec& stroke) {
+    const Session& part = segmentSession();
+    Brush brush = strokeBrush(stroke, part.reactionModel(), part.domain());
+    if (writesChemical(stroke.mode)) {
+        if (!stroke.continues)
+            m_strokeCoverage.clear();
+        brush.region = uncoveredPart(brush.region, m_strokeCoverage, part.domain());
     }
+    return brush;
 }
 
 void SessionRun::applyEdit(LiveEdit edit) {
@@ -206,18 +228,13 @@ void SessionRun::applyEdit(LiveEdit edit) {
         throw InputError("the run has finished: there is nothing left to edit");
     edit.step = sessionStepsDone();
     // Checked before anything changes, so a refused edit leaves the run as it was.
-    const Session& part = segmentSession();
-    Brush brush;
-    if (edit.stroke)
-        brush = strokeBrush(*edit.stroke, part.reactionModel(), part.domain());
+    if (edit.stroke) {
+        const Session& part = segmentSession();
+        (void)strokeBrush(*edit.stroke, part.reactionModel(), part.domain());
+    }
     if (edit.dt && (!(*edit.dt > 0) || !std::isfinite(*edit.dt)))
         throw InputError("dt " + std::to_string(*edit.dt) + " is not a positive time step");
-    if (!edit.params.empty())
-        setParams(edit.params);
-    if (edit.dt)
-        setDt(*edit.dt);
-    if (edit.stroke)
-        m_simulator->applyBrush(brush);
+    applyNow(edit);
     m_applied.push_back(std::move(edit));
 }
 
@@ -231,14 +248,15 @@ RunCheckpoint SessionRun::checkpoint() const {
     c.entry = m_entry;
     c.frozen = m_frozen;
     c.state = state();
-    c.applied = m_applied.size();
+    c.applied = m_applied;
     c.nextEdit = m_nextEdit;
     c.stateModel = m_stateModel;
+    c.strokeCoverage = m_strokeCoverage;
     return c;
 }
 
 void SessionRun::restore(const RunCheckpoint& c) {
-    assert(c.applied <= m_applied.size() && c.segments.size() == m_segments.size());
+    assert(c.segments.size() == m_segments.size());
     m_index = c.index;
     m_stepsRun = c.stepsRun;
     m_stepsDone = c.stepsDone;
@@ -247,7 +265,7 @@ void SessionRun::restore(const RunCheckpoint& c) {
     m_frozen = c.frozen;
     m_stateModel = c.stateModel;
     m_nextEdit = c.nextEdit;
-    m_applied.resize(c.applied);
+    m_applied = c.applied;
     m_settledEarly = false;
     m_simulator.reset();
     if (c.finished) {
@@ -277,6 +295,7 @@ void SessionRun::restore(const RunCheckpoint& c) {
     for (std::size_t i = m_index + 1; i < m_segments.size(); ++i)
         m_segments[i] = c.segments[i];
     m_simulator->setState(c.state);
+    m_strokeCoverage = c.strokeCoverage;
 }
 
 void SessionRun::endSegment() {

@@ -10,6 +10,7 @@
 
 #include "core/sim/runner.hpp"
 #include "core/sim/segments.hpp"
+#include "core/sim/stroke_brush.hpp"
 
 namespace morphogen {
 
@@ -38,9 +39,10 @@ struct RunCheckpoint {
     Segment entry;                 // the current segment as it was entered
     std::vector<std::uint8_t> frozen;
     State state;
-    std::size_t applied = 0;  // edits applied so far (a prefix of SessionRun::edits())
-    std::size_t nextEdit = 0; // the session's own edits still to come
+    std::vector<LiveEdit> applied; // the edits applied until then
+    std::size_t nextEdit = 0;      // the session's own edits still to come
     const ReactionModel* stateModel = nullptr;
+    StrokeCoverage strokeCoverage;
 };
 
 // A session advanced step by step: cascade stages and schedule levels are
@@ -114,6 +116,10 @@ public:
     // chemicals; its steps are ignored (the segment keeps its length).
     void replaceSession(const Session& session);
 
+    // The colour map of the session and every segment: it changes no step,
+    // only how the result is shown and what completed() records.
+    void setColormap(const ColorMapSpec& colormap);
+
     // Session steps run so far over every segment (position() counts
     // simulator steps, which are substeps on a grid finer than one cell per
     // unit): the clock of live edits.
@@ -130,11 +136,11 @@ public:
     // The edits applied so far, the session's own and applyEdit's, in order.
     const std::vector<LiveEdit>& edits() const { return m_applied; }
 
-    // The run as it is now, and a return to such a moment (the same run: a
-    // checkpoint of another SessionRun is a programmer error). Restoring
-    // gives back the state bit for bit, the position, the parameters and dt
-    // in force, the painted maps and held cells (replayed from the edits),
-    // and forgets the edits recorded after it.
+    // The run as it is now, and a return to such a moment, earlier or later
+    // (of the same run: a checkpoint of another SessionRun is a programmer
+    // error). Restoring gives back the state bit for bit, the position, the
+    // parameters and dt in force, the painted maps and held cells (replayed
+    // from the edits) and the edit record as it was then.
     RunCheckpoint checkpoint() const;
     void restore(const RunCheckpoint& checkpoint);
 
@@ -148,6 +154,9 @@ private:
     void applyDueEdits();
     // Applies an edit without recording it.
     void applyNow(const LiveEdit& edit);
+    // The brush write of a stroke edit now (its uncovered part for a piece
+    // that continues a stroke).
+    Brush strokeWrite(const StrokeSpec& stroke);
     // Simulator steps of the current segment until the next own edit is due
     // (INT_MAX when none is due in it).
     int stepsToNextEdit() const;
@@ -176,6 +185,7 @@ private:
     Segment m_entry;            // the current segment as entered (restore starts from it)
     std::size_t m_nextEdit = 0; // into m_session.edits
     std::vector<LiveEdit> m_applied;
+    StrokeCoverage m_strokeCoverage; // the last stroke's, for the pieces that continue it
 };
 
 } // namespace morphogen

@@ -74,6 +74,19 @@ BrushRegion strokeRegion(const StrokeSpec& stroke, const Domain& domain) {
     return BrushRegion::fromCells(domain, std::move(cells));
 }
 
+BrushRegion uncoveredPart(const BrushRegion& piece, StrokeCoverage& coverage,
+                          const Domain& domain) {
+    std::vector<BrushRegion::Cell> cells;
+    for (const BrushRegion::Cell& c : piece.cells()) {
+        float& covered = coverage[c.index];
+        if (c.weight > covered) {
+            cells.push_back({c.index, std::min(1.0f, c.weight - covered)});
+            covered = c.weight;
+        }
+    }
+    return BrushRegion::fromCells(domain, std::move(cells));
+}
+
 Brush strokeBrush(const StrokeSpec& stroke, const ReactionModel& model, const Domain& domain) {
     Brush brush;
     brush.mode = stroke.mode;

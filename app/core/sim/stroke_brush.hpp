@@ -3,6 +3,9 @@
 #include "core/session/live_edit.hpp"
 #include "core/sim/brush.hpp"
 
+#include <cstdint>
+#include <unordered_map>
+
 namespace morphogen {
 
 // The cells a recorded stroke covers on a grid of `domain`'s size: the disc of
@@ -16,5 +19,16 @@ BrushRegion strokeRegion(const StrokeSpec& stroke, const Domain& domain);
 // parameter names resolved). Throws InputError when the model lacks the
 // stroke's chemical or parameter (a stage switched models), naming both.
 Brush strokeBrush(const StrokeSpec& stroke, const ReactionModel& model, const Domain& domain);
+
+// What a stroke has covered so far, per cell: the largest weight any of its
+// pieces gave the cell (chemical modes).
+using StrokeCoverage = std::unordered_map<std::uint32_t, float>;
+
+// The part of `piece` (one piece of a stroke) that the stroke has not
+// covered yet: each cell's weight becomes the rise of its coverage, and
+// cells the stroke already covered as much drop out; `coverage` is updated.
+// A chemical brush then changes a cell by at most its full amount over the
+// stroke, whatever the order and overlap of the pieces.
+BrushRegion uncoveredPart(const BrushRegion& piece, StrokeCoverage& coverage, const Domain& domain);
 
 } // namespace morphogen

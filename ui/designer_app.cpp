@@ -1,0 +1,606 @@
+#include "ui/designer_app.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include <glad/gl.h>
+// GLFW after glad: glad provides the GL declarations.
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "core/base/errors.hpp"
+#include "core/io/image_io.hpp"
+#include "core/output/colormap.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "ui/script.hpp"
+
+namespace morphogen::ui {
+
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kFrameBudget = 1.0 / 60.0; // seconds: the auto steps-per-frame target
+constexpr double kAutosaveSeconds = 60.0;
+constexpr const char* kDefaultPreset = "gs_coral";
+
+} // namespace
+
+void Designer::guarded(const char* what, const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const std::exception& e) {
+        reportError(std::string(what) + ": " + e.what());
+    }
+}
+
+Designer::Designer(const DesignerOptions& options, const DesignerServices& services)
+    : m_options(options), m_services(services),
+      m_settings(Settings::load(options.configDir, options.stateDir)),
+      m_doc([this](const Session& s) { return m_backend.makeSimulator(s); }) {
+    m_window = gl::createGlfwContext(options.width, options.height, "Morphogen designer", true);
+    m_backend = gl::makeBackend(gl::parseBackendChoice(options.backend), *m_window);
+    std::fprintf(stderr, "morphogen design: %s\n", m_backend.reason.c_str());
+    m_controlsWidth = m_settings.controlsWidth;
+    m_sideWidth = m_settings.sideWidth;
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    static std::string iniPath; // Dear ImGui keeps the pointer
+    iniPath = m_settings.imguiIniPath();
+    std::error_code ec;
+    fs::create_directories(m_settings.configDir, ec);
+    io.IniFilename = iniPath.c_str();
+    ImGui::StyleColorsDark();
+    ImGui::GetStyle().WindowRounding = 0;
+    ImGui_ImplGlfw_InitForOpenGL(m_window->window(), true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+
+    // What to open: the command line's choice, else the session open at the
+    // last exit, else the default preset.
+    if (!options.session.empty())
+        openSessionFile(options.session);
+    else if (!options.preset.empty())
+        openPreset(options.preset);
+    else if (!m_settings.lastSession.empty() && fs::exists(m_settings.lastSession))
+        openSessionFile(m_settings.lastSession);
+    else
+        openPreset(m_settings.lastPreset.empty() ? kDefaultPreset : m_settings.lastPreset);
+    if (!m_doc.isOpen())
+        openPreset(kDefaultPreset);
+    // A crash (or a kill) leaves the autosave behind: offer it back.
+    m_offerRestore = options.script.empty() && fs::exists(m_settings.autosavePath());
+
+    std::vector<Session> presets = allPresets();
+    m_thumbnails.start(std::move(presets));
+    m_lastFrame = m_lastRate = m_lastAutosave = Clock::now();
+}
+
+Designer::~Designer() {
+    if (m_job && m_job->worker.joinable()) {
+        m_job->cancel = true;
+        m_job->worker.join();
+    }
+    m_display.reset();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+}
+
+void Designer::reportError(const std::string& message) {
+    m_lastError = message;
+    m_status = message;
+    ++m_errorCount;
+    std::fprintf(stderr, "morphogen design: %s\n", message.c_str());
+}
+
+// --- actions --------------------------------------------------------------------
+
+void Designer::openPreset(const std::string& name) {
+    guarded("open preset", [&] {
+        m_doc.open(loadPreset(name));
+        m_replayTo = 0;
+        m_settings.lastPreset = name;
+        m_settings.lastSession.clear();
+        m_viewFramed = false;
+        m_displayChemical = -1;
+        m_status = "opened preset " + name;
+    });
+}
+
+void Designer::openSessionFile(const std::string& path) {
+    guarded("open", [&] {
+        Session session = loadSessionFile(path);
+        const long long steps = session.steps;
+        m_doc.open(std::move(session), path);
+        m_replayTo = steps;
+        m_settings.lastSession = fs::absolute(path).string();
+        m_settings.lastFolder = fs::absolute(path).parent_path().string();
+        m_viewFramed = false;
+        m_displayChemical = -1;
+        m_status = "opened " + path;
+    });
+}
+
+void Designer::saveSession(const std::string& path) {
+    guarded("save", [&] {
+        m_doc.save(path);
+        m_settings.lastSession = fs::absolute(path).string();
+        m_settings.lastFolder = fs::absolute(path).parent_path().string();
+        m_status = "saved " + path + " (step " + std::to_string(m_doc.steps()) + ")";
+    });
+}
+
+void Designer::exportImage(const std::string& path, int bitDepth) {
+    guarded("export", [&] {
+        RunResult result;
+        result.state = m_doc.run().state();
+        result.completed = m_doc.completed();
+        result.stepsDone = int(m_doc.steps());
+        const std::string sessionPath = fs::path(path).replace_extension(".json").string();
+        m_services.writeImage(result, path, sessionPath, bitDepth);
+        m_status = "exported " + path + " and " + sessionPath;
+    });
+}
+
+void Designer::exportTextureSet(const std::string& dir) {
+    guarded("export texture set", [&] {
+        RunResult result;
+        result.state = m_doc.run().state();
+        result.completed = m_doc.completed();
+        m_services.writeTextureSet(result, dir);
+        m_status = "wrote the texture set in " + dir;
+    });
+}
+
+void Designer::exportAtSize(const std::string& path, int width, int height, int bitDepth) {
+    if (m_job) {
+        reportError("an export is already running");
+        return;
+    }
+    Session session = m_doc.completed();
+    guarded("export", [&] {
+        if (width < 1 || height < 1 || width > kMaxGridSide || height > kMaxGridSide)
+            throw InputError("export size " + std::to_string(width) + " x " +
+                             std::to_string(height) + " is outside 1.." +
+                             std::to_string(kMaxGridSide));
+        resizeSession(session, width, height);
+        checkWritable(path);
+        m_job = std::make_unique<BackgroundJob>();
+    });
+    if (!m_job)
+        return;
+    m_job->title = "Exporting " + fs::path(path).filename().string() + " at " +
+                   std::to_string(width) + " x " + std::to_string(height);
+    BackgroundJob* job = m_job.get();
+    DesignerServices services = m_services;
+    // The CPU backend on a worker thread: the window's GL context belongs to
+    // the main thread, which keeps drawing (and the live run keeps going).
+    job->worker = std::thread([job, services, session, path, bitDepth] {
+        try {
+            RunOptions options;
+            options.cancel = &job->cancel;
+            options.progress = [job](int done, int total) {
+                job->done = done;
+                job->total = std::max(total, 1);
+            };
+            const SimulatorFactory cpu = [](const Session& s) {
+                return std::make_unique<CpuSimulator>(s);
+            };
+            const RunResult result = runSession(session, cpu, options);
+            if (result.cancelled) {
+                job->message = "export cancelled: nothing written";
+            } else {
+                const std::string sessionPath = fs::path(path).replace_extension(".json").string();
+                services.writeImage(result, path, sessionPath, bitDepth);
+                job->message = "exported " + path;
+            }
+        } catch (const std::exception& e) {
+            job->message = std::string("export failed: ") + e.what();
+        }
+        job->finished = true;
+    });
+}
+
+void Designer::screenshot(const std::string& path) {
+    m_pendingScreenshot = path;
+}
+
+void Designer::stepOnce() {
+    m_playing = false;
+    guarded("step", [&] { m_doc.advance(1); });
+}
+
+void Designer::reset() {
+    guarded("reset", [&] {
+        m_doc.reset();
+        m_scrub.reset();
+    });
+}
+
+void Designer::reseed() {
+    guarded("reseed", [&] {
+        m_doc.reseed(m_doc.session().seed + 1);
+        m_scrub.reset();
+    });
+}
+
+void Designer::undo() {
+    if (m_doc.stroking())
+        return;
+    guarded("undo", [&] {
+        m_status = "undid " + m_doc.undoLabel();
+        m_doc.undo();
+    });
+}
+
+void Designer::redo() {
+    if (m_doc.stroking())
+        return;
+    guarded("redo", [&] {
+        m_status = "redid " + m_doc.redoLabel();
+        m_doc.redo();
+    });
+}
+
+void Designer::changeParam(const std::string& name, float value) {
+    guarded("parameter", [&] {
+        m_doc.beginChange("change " + name);
+        try {
+            m_doc.setParam(name, value);
+        } catch (...) {
+            m_doc.endChange();
+            throw;
+        }
+        m_doc.endChange();
+    });
+}
+
+void Designer::setStepsPerFrame(int steps) {
+    m_stepsPerFrame = std::max(0, steps);
+}
+
+// --- the frame ------------------------------------------------------------------
+
+int Designer::run(ScriptPlayer* script) {
+    while (!m_quit && !m_window->shouldClose()) {
+        glfwPollEvents();
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        if (script)
+            script->beforeFrame(*this);
+        ImGui::NewFrame();
+        frame();
+        ImGui::Render();
+        const auto [fw, fh] = m_window->framebufferSize();
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, fw, fh);
+        glClearColor(0.09f, 0.09f, 0.1f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (!m_pendingScreenshot.empty())
+            writeScreenshot();
+        if (script) {
+            script->afterFrame(*this);
+            if (script->failed())
+                m_quit = true;
+        }
+        m_window->swapBuffers();
+    }
+    autosave(true);
+    // A clean exit: the session goes to last-exit.json, the crash marker away.
+    std::error_code ec;
+    if (fs::exists(m_settings.autosavePath(), ec)) {
+        fs::rename(m_settings.autosavePath(), m_settings.lastExitPath(), ec);
+    }
+    int w = 0, h = 0;
+    glfwGetWindowSize(m_window->window(), &w, &h);
+    if (w > 0 && h > 0) {
+        m_settings.windowWidth = w;
+        m_settings.windowHeight = h;
+    }
+    m_settings.controlsWidth = m_controlsWidth;
+    m_settings.sideWidth = m_sideWidth;
+    if (script == nullptr)
+        m_settings.save();
+    return script && script->failed() ? 1 : 0;
+}
+
+void Designer::frame() {
+    const Clock::time_point now = Clock::now();
+    const double frameSeconds = seconds(now - m_lastFrame);
+    m_lastFrame = now;
+    ++m_framesSinceRate;
+    if (seconds(now - m_lastRate) >= 0.5) {
+        const double span = seconds(now - m_lastRate);
+        m_fps = m_framesSinceRate / span;
+        m_stepsPerSecond = double(m_doc.steps() - m_stepsAtLastRate) / span;
+        m_stepsAtLastRate = m_doc.steps();
+        m_framesSinceRate = 0;
+        m_lastRate = now;
+    }
+    (void)frameSeconds;
+
+    simulate();
+    handleShortcuts();
+    refreshDisplay();
+
+    const ImGuiIO& io = ImGui::GetIO();
+    const float menuHeight = ImGui::GetFrameHeight();
+    const float statusHeight = ImGui::GetFrameHeight() + 6;
+    const float width = io.DisplaySize.x, height = io.DisplaySize.y;
+    drawMenuBar();
+    const float bodyTop = menuHeight, bodyHeight = height - menuHeight - statusHeight;
+    m_controlsWidth = std::clamp(m_controlsWidth, 200.0f, std::max(200.0f, width * 0.45f));
+    m_sideWidth = std::clamp(m_sideWidth, 150.0f, std::max(150.0f, width * 0.35f));
+    drawControls(0, bodyTop, m_controlsWidth, bodyHeight);
+    drawCanvas(m_controlsWidth, bodyTop, width - m_controlsWidth - m_sideWidth, bodyHeight);
+    drawSidePanel(width - m_sideWidth, bodyTop, m_sideWidth, bodyHeight);
+    drawStatusBar(height - statusHeight, statusHeight);
+    drawPopups();
+    drawJob();
+    autosave(false);
+}
+
+void Designer::simulate() {
+    if (!m_doc.isOpen() || m_doc.run().finished())
+        return;
+    if (m_replayTo > m_doc.steps()) {
+        // As many steps as fit a frame's budget, then the next frame.
+        const Clock::time_point start = Clock::now();
+        bool failed = true;
+        guarded("replay", [&] {
+            while (m_replayTo > m_doc.steps() && seconds(Clock::now() - start) < kFrameBudget)
+                m_doc.advance(int(std::min<long long>(m_replayTo - m_doc.steps(), 50)));
+            failed = false;
+        });
+        if (m_replayTo <= m_doc.steps() || failed) {
+            m_replayTo = 0;
+            m_playing = false; // the saved picture, until the artist plays on
+        }
+        return;
+    }
+    if (!m_playing || m_scrub)
+        return;
+    int steps = m_stepsPerFrame > 0 ? m_stepsPerFrame : m_autoSteps;
+    const Clock::time_point start = Clock::now();
+    try {
+        m_doc.advance(steps);
+        // The run's own blow-up check is off (it reads the whole state back
+        // every chunk); one check per second of frames is enough to stop.
+        if (m_framesSinceRate == 0) {
+            if (auto problem = m_doc.run().simulator().insaneValue(m_doc.live().reactionModel())) {
+                m_playing = false;
+                reportError("the simulation blew up (" + *problem +
+                            "): lower dt, undo the last change, or reset");
+            }
+        }
+    } catch (const std::exception& e) {
+        m_playing = false;
+        reportError(e.what());
+    }
+    m_simSeconds = seconds(Clock::now() - start);
+    if (m_stepsPerFrame == 0) {
+        // Keep a frame within its budget: grow the steps while the
+        // simulation takes less than ~70% of it, shrink them when it takes more.
+        if (m_simSeconds < kFrameBudget * 0.5)
+            m_autoSteps = std::min(m_autoSteps + std::max(1, m_autoSteps / 4), 4096);
+        else if (m_simSeconds > kFrameBudget * 0.7)
+            m_autoSteps = std::max(1, m_autoSteps * 3 / 4);
+    }
+    if (m_doc.steps() - (m_doc.history().empty() ? 0 : m_doc.history().back().step) >=
+        m_snapshotEvery)
+        m_doc.recordSnapshot();
+}
+
+void Designer::refreshDisplay() {
+    if (!m_doc.isOpen())
+        return;
+    const Session& live = m_doc.live();
+    if (!m_display || m_display->texture().width() != live.width ||
+        m_display->texture().height() != live.height) {
+        m_display = std::make_unique<gl::Display>(live.width, live.height);
+        m_viewFramed = false;
+    }
+    const ReactionModel& model = live.reactionModel();
+    const int chemical = m_displayChemical >= 0 && m_displayChemical < int(model.chemicals().size())
+                             ? m_displayChemical
+                             : colormapChemical(live.colormap, model);
+    guarded("display", [&] {
+        if (m_scrub && *m_scrub < m_doc.history().size())
+            m_display->upload(m_doc.history()[*m_scrub].checkpoint.state, chemical, live.colormap);
+        else
+            m_display->update(m_doc.run().simulator(), chemical, live.colormap);
+    });
+}
+
+void Designer::handleShortcuts() {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantTextInput)
+        return;
+    const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
+    if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false))
+        shift ? redo() : undo();
+    else if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y, false))
+        redo();
+    else if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S, false)) {
+        if (!m_doc.path().empty() && !shift)
+            saveSession(m_doc.path());
+        else
+            m_showSave = true;
+    } else if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O, false))
+        m_showOpen = true;
+    else if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_E, false))
+        m_showExport = true;
+    else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_SPACE, false))
+        m_playing = !m_playing;
+    else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_PERIOD, true))
+        stepOnce();
+    else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_R, false))
+        shift ? reseed() : reset();
+    else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F, false))
+        m_viewFramed = false;
+    else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_T, false))
+        m_tiled = !m_tiled;
+    else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_LEFT_BRACKET, true))
+        m_brush.radius = std::max(0.002f, m_brush.radius / 1.2f);
+    else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_RIGHT_BRACKET, true))
+        m_brush.radius = std::min(0.5f, m_brush.radius * 1.2f);
+    else if (ImGui::IsKeyPressed(GLFW_KEY_F1, false))
+        m_showHelp = !m_showHelp;
+}
+
+void Designer::drawMenuBar() {
+    if (!ImGui::BeginMainMenuBar())
+        return;
+    if (ImGui::BeginMenu("File")) {
+        if (ImGui::MenuItem("Open session...", "Ctrl+O"))
+            m_showOpen = true;
+        if (ImGui::MenuItem("Save session", "Ctrl+S", false, !m_doc.path().empty()))
+            saveSession(m_doc.path());
+        if (ImGui::MenuItem("Save session as...", "Ctrl+Shift+S"))
+            m_showSave = true;
+        ImGui::Separator();
+        if (ImGui::MenuItem("Export...", "Ctrl+E"))
+            m_showExport = true;
+        ImGui::Separator();
+        if (ImGui::MenuItem("Quit"))
+            m_quit = true;
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Edit")) {
+        if (ImGui::MenuItem(("Undo " + m_doc.undoLabel()).c_str(), "Ctrl+Z", false,
+                            m_doc.canUndo()))
+            undo();
+        if (ImGui::MenuItem(("Redo " + m_doc.redoLabel()).c_str(), "Ctrl+Shift+Z", false,
+                            m_doc.canRedo()))
+            redo();
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Simulation")) {
+        if (ImGui::MenuItem(m_playing ? "Pause" : "Play", "Space"))
+            m_playing = !m_playing;
+        if (ImGui::MenuItem("Single step", "."))
+            stepOnce();
+        if (ImGui::MenuItem("Reset", "R"))
+            reset();
+        if (ImGui::MenuItem("Reseed", "Shift+R"))
+            reseed();
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("View")) {
+        if (ImGui::MenuItem("Frame canvas", "F"))
+            m_viewFramed = false;
+        ImGui::MenuItem("Tiled 3x3 preview", "T", &m_tiled);
+        ImGui::MenuItem("Nearest texels when zoomed in", nullptr, &m_nearest);
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Help")) {
+        if (ImGui::MenuItem("Keyboard shortcuts", "F1"))
+            m_showHelp = true;
+        ImGui::EndMenu();
+    }
+    ImGui::EndMainMenuBar();
+}
+
+void Designer::drawStatusBar(float y, float h) {
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(0, y));
+    ImGui::SetNextWindowSize(ImVec2(io.DisplaySize.x, h));
+    ImGui::Begin("##status", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
+    const std::string backend =
+        m_doc.isOpen() && !m_doc.run().finished() ? m_doc.run().simulator().backendName() : "-";
+    ImGui::Text("%s | step %lld | %.0f fps | %.0f steps/s | %d steps/frame%s | backend %s%s",
+                m_playing ? "running" : "paused", m_doc.isOpen() ? m_doc.steps() : 0LL, m_fps,
+                m_stepsPerSecond, m_stepsPerFrame > 0 ? m_stepsPerFrame : m_autoSteps,
+                m_stepsPerFrame > 0 ? "" : " (auto)", backend.c_str(),
+                m_doc.dirty() ? " | unsaved changes" : "");
+    if (!m_status.empty()) {
+        ImGui::SameLine();
+        ImGui::TextColored(m_status == m_lastError ? ImVec4(1, 0.45f, 0.4f, 1)
+                                                   : ImVec4(0.6f, 0.8f, 1, 1),
+                           " | %s", m_status.c_str());
+    }
+    ImGui::End();
+}
+
+void Designer::drawJob() {
+    if (m_replayTo > 0) {
+        const ImGuiIO& io = ImGui::GetIO();
+        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x / 2, io.DisplaySize.y / 2),
+                                ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+        ImGui::Begin("Replaying", nullptr,
+                     ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize);
+        ImGui::Text("Replaying the saved session to step %lld", m_replayTo);
+        ImGui::ProgressBar(float(m_doc.steps()) / float(m_replayTo), ImVec2(360, 0));
+        if (ImGui::Button("Stop here"))
+            m_replayTo = 0;
+        ImGui::End();
+    }
+    if (!m_job)
+        return;
+    if (m_job->finished) {
+        m_job->worker.join();
+        m_status = m_job->message;
+        m_job.reset();
+        return;
+    }
+    ImGui::OpenPopup("Working");
+    if (ImGui::BeginPopupModal("Working", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::TextUnformatted(m_job->title.c_str());
+        const float fraction = float(m_job->done.load()) / float(std::max(1, m_job->total.load()));
+        ImGui::ProgressBar(fraction, ImVec2(360, 0));
+        if (ImGui::Button("Cancel"))
+            m_job->cancel = true;
+        ImGui::EndPopup();
+    }
+}
+
+void Designer::autosave(bool force) {
+    if (!m_doc.isOpen() || !m_doc.dirty())
+        return;
+    const Clock::time_point now = Clock::now();
+    if (!force && seconds(now - m_lastAutosave) < kAutosaveSeconds)
+        return;
+    m_lastAutosave = now;
+    try {
+        fs::create_directories(m_settings.stateDir);
+        saveSessionFile(m_doc.completed(), m_settings.autosavePath());
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "morphogen design: autosave failed: %s\n", e.what());
+    }
+}
+
+void Designer::writeScreenshot() {
+    const std::string path = std::exchange(m_pendingScreenshot, "");
+    guarded("screenshot", [&] {
+        const auto [w, h] = m_window->framebufferSize();
+        std::vector<unsigned char> rgba(std::size_t(w) * h * 4);
+        glReadBuffer(GL_BACK);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+        std::vector<float> rgb(std::size_t(w) * h * 3);
+        for (int y = 0; y < h; ++y) // GL's rows run bottom up
+            for (int x = 0; x < w; ++x)
+                for (int c = 0; c < 3; ++c)
+                    rgb[(std::size_t(y) * w + x) * 3 + c] =
+                        rgba[(std::size_t(h - 1 - y) * w + x) * 4 + c] / 255.0f;
+        writeRgbImage(path, rgb, w, h, 8);
+        m_status = "screenshot " + path;
+    });
+}
+
+int runDesigner(const DesignerOptions& options, const DesignerServices& services) {
+    std::unique_ptr<ScriptPlayer> script;
+    if (!options.script.empty())
+        script = std::make_unique<ScriptPlayer>(loadScript(options.script));
+    Designer designer(options, services);
+    return designer.run(script.get());
+}
+
+} // namespace morphogen::ui

@@ -1,0 +1,157 @@
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "gl/backend.hpp"
+#include "gl/display.hpp"
+#include "gl/glfw_context.hpp"
+#include "ui/canvas_view.hpp"
+#include "ui/designer.hpp"
+#include "ui/document.hpp"
+#include "ui/settings.hpp"
+#include "ui/thumbnails.hpp"
+
+namespace morphogen::ui {
+
+class ScriptPlayer;
+
+// The brush panel's settings; a stroke copies them (StrokeSpec).
+struct BrushSettings {
+    BrushMode mode = BrushMode::Add;
+    int chemical = -1; // -1: the model's display chemical
+    std::string param; // paint
+    float value = 0.5f;
+    float radius = 0.03f; // fraction of the canvas width
+    float falloff = 0.5f;
+    std::uint64_t seed = 1;
+};
+
+// A long job on a worker thread (an export at a large size): progress for
+// the bar, a flag to cancel it, its message when it ends.
+struct BackgroundJob {
+    std::string title;
+    std::thread worker;
+    std::atomic<int> done{0}, total{1};
+    std::atomic<bool> cancel{false}, finished{false};
+    std::string message; // written by the worker before `finished`
+};
+
+// The designer: one window, the document, the views and panels. Its member
+// functions are the actions that the mouse, the keyboard and a script all
+// go through (ui/script.hpp drives the same ones).
+class Designer {
+public:
+    Designer(const DesignerOptions& options, const DesignerServices& services);
+    ~Designer();
+    Designer(const Designer&) = delete;
+    Designer& operator=(const Designer&) = delete;
+
+    int run(ScriptPlayer* script);
+
+    // --- actions --------------------------------------------------------------
+    void openPreset(const std::string& name);
+    void openSessionFile(const std::string& path);
+    void saveSession(const std::string& path);
+    void exportImage(const std::string& path, int bitDepth);
+    // Renders the session at width x height on a worker thread (progress bar,
+    // cancellable) and writes it as exportImage does.
+    void exportAtSize(const std::string& path, int width, int height, int bitDepth);
+    void exportTextureSet(const std::string& dir);
+    void screenshot(const std::string& path); // the whole window, after this frame
+    void setPlaying(bool playing) { m_playing = playing; }
+    bool playing() const { return m_playing; }
+    void stepOnce();
+    void reset();
+    void reseed();
+    void undo();
+    void redo();
+    void changeParam(const std::string& name, float value); // one undo step
+    void setStepsPerFrame(int steps);                       // 0: automatic
+    void quit() { m_quit = true; }
+
+    Document& document() { return m_doc; }
+    BrushSettings& brush() { return m_brush; }
+    // The canvas' last screen rectangle and view (the script aims with them).
+    std::array<float, 4> canvasRect() const { return m_canvasRect; }
+    const CanvasView& canvasView() const { return m_view; }
+    // Shows an error in the status line and on stderr; the script fails on it.
+    void reportError(const std::string& message);
+    const std::string& lastError() const { return m_lastError; }
+    int errorCount() const { return m_errorCount; }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+    void frame();
+    void simulate();
+    void refreshDisplay();
+    void handleShortcuts();
+    void drawMenuBar();
+    void drawControls(float x, float y, float w, float h);
+    void drawModelSection();
+    void drawParamsSection();
+    void drawBrushSection();
+    void drawDisplaySection();
+    void drawCanvas(float x, float y, float w, float h);
+    void drawSidePanel(float x, float y, float w, float h);
+    void drawPresets();
+    void drawHistory();
+    void drawStatusBar(float y, float h);
+    void drawPopups();
+    void drawJob();
+    void autosave(bool force);
+    void writeScreenshot();
+    // Runs `f`, reporting an exception as an error instead of leaving the frame.
+    void guarded(const char* what, const std::function<void()>& f);
+
+    DesignerOptions m_options;
+    DesignerServices m_services;
+    Settings m_settings;
+    std::unique_ptr<gl::GlfwContext> m_window;
+    gl::Backend m_backend;
+    Document m_doc;
+    std::unique_ptr<gl::Display> m_display;
+    int m_displayChemical = -1; // -1: the colour map's
+    CanvasView m_view;
+    bool m_viewFramed = false;
+    bool m_nearest = true, m_tiled = false;
+    std::array<float, 4> m_canvasRect{};
+    BrushSettings m_brush;
+    bool m_playing = true, m_quit = false;
+    int m_stepsPerFrame = 0; // 0: automatic
+    int m_autoSteps = 1;
+    double m_simSeconds = 0;
+    double m_fps = 0, m_stepsPerSecond = 0;
+    std::chrono::steady_clock::time_point m_lastFrame, m_lastRate, m_lastAutosave;
+    long long m_stepsAtLastRate = 0;
+    int m_framesSinceRate = 0;
+    long long m_snapshotEvery = 500;
+    // An opened session file runs to its steps (its strokes replayed) before
+    // the artist takes over: the canvas shows what was saved.
+    long long m_replayTo = 0;
+    std::optional<std::size_t> m_scrub; // a history snapshot shown instead of the run
+    std::string m_status, m_lastError;
+    int m_errorCount = 0;
+    std::string m_pendingScreenshot;
+    bool m_showHelp = false, m_showOpen = false, m_showSave = false, m_showExport = false;
+    bool m_offerRestore = false;
+    char m_pathBuffer[1024] = {};
+    int m_exportSize[2] = {1024, 1024};
+    int m_exportBits = 8;
+    std::unique_ptr<BackgroundJob> m_job;
+    Thumbnails m_thumbnails;
+    std::vector<Session> m_presets;
+    State m_readout; // the state under the cursor's readout, refreshed ten times a second
+    std::chrono::steady_clock::time_point m_lastReadout;
+    std::string m_presetFilter;
+    float m_controlsWidth = 340, m_sideWidth = 300;
+};
+
+} // namespace morphogen::ui

@@ -1,0 +1,276 @@
+// The designer's canvas (zoom, pan, brush strokes, the readout under the
+// cursor) and its side panel (presets browser, growth history).
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <glad/gl.h>
+#include <imgui.h>
+
+#include "core/base/names.hpp"
+#include "ui/designer_app.hpp"
+
+namespace morphogen::ui {
+
+namespace {
+
+ImTextureID textureId(unsigned id) {
+    return reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(id));
+}
+
+} // namespace
+
+void Designer::drawCanvas(float x, float y, float w, float h) {
+    ImGui::SetNextWindowPos(ImVec2(x, y));
+    ImGui::SetNextWindowSize(ImVec2(w, h));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+    ImGui::Begin("Canvas", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                     ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse);
+    ImGui::PopStyleVar();
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    const ImVec2 size = ImGui::GetContentRegionAvail();
+    m_canvasRect = {origin.x, origin.y, size.x, size.y};
+    if (!m_display || size.x < 8 || size.y < 8) {
+        ImGui::End();
+        return;
+    }
+    const int cw = m_display->texture().width(), ch = m_display->texture().height();
+    if (!m_viewFramed) {
+        m_view.frame(cw, ch, size.x, size.y);
+        if (m_tiled)
+            m_view.zoom /= 3.0;
+        m_viewFramed = true;
+    }
+
+    ImGui::InvisibleButton("canvas", size,
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                               ImGuiButtonFlags_MouseButtonMiddle);
+    const bool hovered = ImGui::IsItemHovered();
+    const ImGuiIO& io = ImGui::GetIO();
+    const std::array<double, 2> mouse = {io.MousePos.x - origin.x, io.MousePos.y - origin.y};
+    const std::array<double, 2> cell = m_view.toCanvas(mouse, size.x, size.y);
+
+    // Zoom to the cursor, pan with the right or middle button.
+    if (hovered && io.MouseWheel != 0)
+        m_view.zoomAt(std::pow(1.2, io.MouseWheel), mouse, size.x, size.y);
+    if (ImGui::IsItemActive() && (ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0) ||
+                                  ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0)))
+        m_view.pan(io.MouseDelta.x, io.MouseDelta.y);
+
+    // Strokes: the left button paints through the engine's brush writes.
+    const std::array<double, 2> fraction = {cell[0] / cw, cell[1] / ch};
+    if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !m_scrub) {
+        const ReactionModel& model = m_doc.live().reactionModel();
+        StrokeSpec stroke;
+        stroke.mode = m_brush.mode;
+        if (writesChemical(m_brush.mode)) {
+            const int c = m_brush.chemical >= 0 && m_brush.chemical < int(model.chemicals().size())
+                              ? m_brush.chemical
+                              : model.displayChemical();
+            stroke.chemical = model.chemicals()[std::size_t(c)].name;
+        }
+        stroke.param = m_brush.mode == BrushMode::Paint ? m_brush.param : "";
+        stroke.value = m_brush.value;
+        stroke.seed = m_brush.seed++;
+        stroke.radius = m_brush.radius;
+        stroke.falloff = m_brush.falloff;
+        guarded("brush", [&] {
+            m_doc.beginStroke(stroke);
+            m_doc.extendStroke({fraction});
+        });
+    } else if (m_doc.stroking() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+        if (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)
+            guarded("brush", [&] { m_doc.extendStroke({fraction}); });
+    }
+    if (m_doc.stroking() && !ImGui::IsMouseDown(ImGuiMouseButton_Left))
+        guarded("brush", [&] { m_doc.endStroke(); });
+
+    // The picture: 3x3 copies in the tiled preview (a periodic pattern must
+    // show no seams), nearest texels once a texel is several pixels wide.
+    glBindTexture(GL_TEXTURE_2D, m_display->texture().id());
+    const GLint filter = m_nearest && m_view.zoom >= 3.0 ? GL_NEAREST : GL_LINEAR;
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->PushClipRect(origin, ImVec2(origin.x + size.x, origin.y + size.y), true);
+    draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y),
+                        IM_COL32(18, 18, 20, 255));
+    const int copies = m_tiled ? 1 : 0;
+    for (int ty = -copies; ty <= copies; ++ty)
+        for (int tx = -copies; tx <= copies; ++tx) {
+            const auto a = m_view.toScreen({double(tx * cw), double(ty * ch)}, size.x, size.y);
+            const auto b =
+                m_view.toScreen({double((tx + 1) * cw), double((ty + 1) * ch)}, size.x, size.y);
+            draw->AddImage(textureId(m_display->texture().id()),
+                           ImVec2(origin.x + float(a[0]), origin.y + float(a[1])),
+                           ImVec2(origin.x + float(b[0]), origin.y + float(b[1])));
+        }
+    if (m_tiled) {
+        const auto a = m_view.toScreen({0, 0}, size.x, size.y);
+        const auto b = m_view.toScreen({double(cw), double(ch)}, size.x, size.y);
+        draw->AddRect(ImVec2(origin.x + float(a[0]), origin.y + float(a[1])),
+                      ImVec2(origin.x + float(b[0]), origin.y + float(b[1])),
+                      IM_COL32(255, 255, 255, 60));
+    }
+    // The brush outline: its radius and, inside, where the falloff starts.
+    if (hovered || m_doc.stroking()) {
+        const float r = float(m_brush.radius * cw * m_view.zoom);
+        const ImVec2 c(io.MousePos.x, io.MousePos.y);
+        draw->AddCircle(c, r, IM_COL32(255, 255, 255, 200), 64, 1.5f);
+        draw->AddCircle(c, r, IM_COL32(0, 0, 0, 160), 64, 3.0f);
+        if (m_brush.falloff > 0 && m_brush.falloff < 1)
+            draw->AddCircle(c, r * (1 - m_brush.falloff), IM_COL32(255, 255, 255, 90), 48, 1.0f);
+    }
+    draw->PopClipRect();
+
+    // The readout under the cursor: every chemical and parameter there.
+    if (hovered && !m_doc.stroking()) {
+        const int ix = int(std::floor(cell[0])), iy = int(std::floor(cell[1]));
+        const int wx = ((ix % cw) + cw) % cw, wy = ((iy % ch) + ch) % ch;
+        const bool inside = m_tiled || (ix >= 0 && iy >= 0 && ix < cw && iy < ch);
+        if (inside) {
+            const Clock::time_point now = Clock::now();
+            if (seconds(now - m_lastReadout) > 0.1 || m_readout.width() == 0) {
+                guarded("readout", [&] {
+                    m_readout =
+                        m_scrub ? m_doc.history()[*m_scrub].checkpoint.state : m_doc.run().state();
+                });
+                m_lastReadout = now;
+            }
+            if (m_readout.width() == cw && m_readout.height() == ch) {
+                const Session& live = m_doc.live();
+                const ReactionModel& model = live.reactionModel();
+                std::string text = "cell " + std::to_string(wx) + ", " + std::to_string(wy);
+                for (int c = 0; c < int(model.chemicals().size()) && c < m_readout.channels();
+                     ++c) {
+                    char line[96];
+                    std::snprintf(line, sizeof line, "\n%s = %.5g",
+                                  model.chemicals()[std::size_t(c)].name.c_str(),
+                                  m_readout.at(c, wx, wy));
+                    text += line;
+                }
+                for (const auto& [name, value] : live.params) {
+                    char line[96];
+                    std::snprintf(line, sizeof line, "\n%s = %.5g%s", name.c_str(), value,
+                                  live.paramMaps.count(name) ? " (map)" : "");
+                    text += line;
+                }
+                ImGui::SetTooltip("%s", text.c_str());
+            }
+        }
+    }
+    if (m_scrub) {
+        ImGui::SetCursorScreenPos(ImVec2(origin.x + 8, origin.y + 8));
+        ImGui::TextColored(ImVec4(1, 0.85f, 0.4f, 1),
+                           "history: step %lld (Branch to continue from here)",
+                           m_doc.history()[*m_scrub].step);
+    }
+    ImGui::End();
+}
+
+void Designer::drawSidePanel(float x, float y, float w, float h) {
+    ImGui::SetNextWindowPos(ImVec2(x, y));
+    ImGui::SetNextWindowSize(ImVec2(w, h));
+    ImGui::Begin("Library", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                     ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoTitleBar);
+    if (ImGui::BeginTabBar("side")) {
+        if (ImGui::BeginTabItem("Presets")) {
+            drawPresets();
+            ImGui::EndTabItem();
+        }
+        if (ImGui::BeginTabItem("History")) {
+            drawHistory();
+            ImGui::EndTabItem();
+        }
+        ImGui::EndTabBar();
+    }
+    ImGui::End();
+}
+
+void Designer::drawPresets() {
+    if (m_presets.empty())
+        m_presets = allPresets();
+    ImGui::SetNextItemWidth(-1);
+    char filter[128];
+    std::snprintf(filter, sizeof filter, "%s", m_presetFilter.c_str());
+    if (ImGui::InputTextWithHint("##filter", "filter presets", filter, sizeof filter))
+        m_presetFilter = filter;
+    if (m_thumbnails.rendered() < m_thumbnails.total())
+        ImGui::ProgressBar(float(m_thumbnails.rendered()) / float(m_thumbnails.total()),
+                           ImVec2(-1, 0), "rendering thumbnails");
+    std::map<std::string, std::vector<const Session*>> byModel;
+    for (const Session& s : m_presets) {
+        const std::string haystack = s.name + " " + s.model + " " + s.description;
+        if (!m_presetFilter.empty() && haystack.find(m_presetFilter) == std::string::npos)
+            continue;
+        byModel[s.model].push_back(&s);
+    }
+    ImGui::BeginChild("presets");
+    const float thumb = float(Thumbnails::kSize);
+    for (const auto& [model, presets] : byModel) {
+        if (!ImGui::CollapsingHeader(model.c_str(), ImGuiTreeNodeFlags_DefaultOpen))
+            continue;
+        for (const Session* s : presets) {
+            ImGui::PushID(s->name.c_str());
+            const unsigned texture = m_thumbnails.texture(s->name);
+            const ImVec2 start = ImGui::GetCursorPos();
+            const bool current = m_doc.isOpen() && m_doc.session().name == s->name;
+            if (ImGui::Selectable("##pick", current, 0, ImVec2(0, thumb)))
+                openPreset(s->name);
+            if (ImGui::IsItemHovered() && !s->description.empty())
+                ImGui::SetTooltip("%s", s->description.c_str());
+            ImGui::SetCursorPos(start);
+            if (texture)
+                ImGui::Image(textureId(texture), ImVec2(thumb, thumb));
+            else
+                ImGui::Dummy(ImVec2(thumb, thumb));
+            ImGui::SameLine();
+            ImGui::BeginGroup();
+            ImGui::TextUnformatted(s->name.c_str());
+            ImGui::PushTextWrapPos(0);
+            ImGui::TextDisabled("%s", s->surface.active() ? "on a 3D model (render --mesh)"
+                                                          : s->description.c_str());
+            ImGui::PopTextWrapPos();
+            ImGui::EndGroup();
+            ImGui::SetCursorPos(ImVec2(start.x, start.y + thumb + 4));
+            ImGui::PopID();
+        }
+    }
+    ImGui::EndChild();
+}
+
+void Designer::drawHistory() {
+    const auto& history = m_doc.history();
+    ImGui::TextWrapped("Snapshots every %lld steps (%zu kept). Drag to look back; Branch "
+                       "continues from the one shown.",
+                       m_snapshotEvery, history.size());
+    int every = int(m_snapshotEvery);
+    if (ImGui::InputInt("every", &every, 100, 1000))
+        m_snapshotEvery = std::clamp(every, 10, 1000000);
+    if (history.empty()) {
+        ImGui::TextDisabled("no snapshots yet");
+        return;
+    }
+    int index = m_scrub ? int(*m_scrub) : int(history.size()) - 1;
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::SliderInt("##timeline", &index, 0, int(history.size()) - 1, "")) {
+        m_scrub = std::size_t(index);
+        m_playing = false;
+    }
+    ImGui::Text("step %lld", history[std::size_t(index)].step);
+    ImGui::BeginDisabled(!m_scrub);
+    if (ImGui::Button("Branch from here")) {
+        guarded("branch", [&] { m_doc.branch(*m_scrub); });
+        m_scrub.reset();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Back to live"))
+        m_scrub.reset();
+    ImGui::EndDisabled();
+}
+
+} // namespace morphogen::ui

@@ -1,0 +1,414 @@
+// The designer's left panel: model, operator, integrator, grid, parameters
+// with their ranges, the stability report, the brush and the display.
+
+#include <algorithm>
+#include <cmath>
+
+#include <imgui.h>
+#include <nlohmann/json.hpp>
+
+#include "core/base/errors.hpp"
+#include "core/base/names.hpp"
+#include "core/models/builtin_models.hpp"
+#include "core/numerics/propagator.hpp"
+#include "core/numerics/tensor_sequence.hpp"
+#include "core/output/colormap.hpp"
+#include "core/sim/stability_check.hpp"
+#include "ui/designer_app.hpp"
+
+namespace morphogen::ui {
+
+namespace {
+
+using nlohmann::json;
+
+// The session with `edit` applied to its JSON, read back through the
+// session reader: every change the panel makes is validated as a file would be.
+Session edited(const Session& base, const std::function<void(json&)>& edit) {
+    json j = sessionToJson(base);
+    edit(j);
+    Session s = sessionFromJson(j, "the designer's session");
+    s.baseDir = base.baseDir;
+    validateSession(s, "the designer's session");
+    return s;
+}
+
+const char* kOperatorLabels[] = {"isotropic, 5-point", "isotropic, 9-point", "anisotropic",
+                                 "generalized (McGraw)"};
+
+int operatorIndex(const DiffusionSpec& d) {
+    switch (d.type) {
+    case DiffusionType::Isotropic:
+        return d.stencil == Stencil::FivePoint ? 0 : 1;
+    case DiffusionType::Anisotropic:
+        return 2;
+    case DiffusionType::Generalized:
+        return 3;
+    }
+    return 0;
+}
+
+// McGraw's propagator of a tensor set as a polar curve: its lobes are the
+// directions the pattern prefers (Fig. 3 of the paper).
+void drawPropagator(const std::string& set) {
+    try {
+        const Propagator p(set.size() == 1 ? tableTwoSet(set[0]) : parseTensorSequence(set));
+        const float size = 120;
+        const ImVec2 origin = ImGui::GetCursorScreenPos();
+        const ImVec2 centre(origin.x + size / 2, origin.y + size / 2);
+        ImDrawList* draw = ImGui::GetWindowDrawList();
+        draw->AddRectFilled(origin, ImVec2(origin.x + size, origin.y + size),
+                            IM_COL32(25, 25, 30, 255));
+        std::vector<double> values(180);
+        double top = 0;
+        for (int i = 0; i < 180; ++i) {
+            values[std::size_t(i)] = std::max(0.0, p.atAngle(i * 2.0, 1.5 * p.width()));
+            top = std::max(top, values[std::size_t(i)]);
+        }
+        std::vector<ImVec2> points;
+        for (int i = 0; i < 180; ++i) {
+            const double r = top > 0 ? values[std::size_t(i)] / top * (size / 2 - 6) : 0;
+            const double a = i * 2.0 * M_PI / 180.0;
+            // Counter-clockwise from +x, y up on screen, as the texture shows it.
+            points.push_back(
+                ImVec2(centre.x + float(r * std::cos(a)), centre.y - float(r * std::sin(a))));
+        }
+        draw->AddPolyline(points.data(), int(points.size()), IM_COL32(120, 200, 255, 255),
+                          ImDrawFlags_Closed, 1.5f);
+        ImGui::Dummy(ImVec2(size, size));
+    } catch (const std::exception& e) {
+        ImGui::TextWrapped("no propagator: %s", e.what());
+    }
+}
+
+} // namespace
+
+void Designer::drawControls(float x, float y, float w, float h) {
+    ImGui::SetNextWindowPos(ImVec2(x, y));
+    ImGui::SetNextWindowSize(ImVec2(w, h));
+    ImGui::Begin("Controls", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                     ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoTitleBar);
+    // Resizing the panel moves the canvas' edge.
+    if (ImGui::GetWindowSize().x != w)
+        m_controlsWidth = ImGui::GetWindowSize().x;
+    if (!m_doc.isOpen()) {
+        ImGui::End();
+        return;
+    }
+    // Transport.
+    if (ImGui::Button(m_playing ? "Pause" : "Play", ImVec2(70, 0)))
+        m_playing = !m_playing;
+    ImGui::SameLine();
+    if (ImGui::Button("Step"))
+        stepOnce();
+    ImGui::SameLine();
+    if (ImGui::Button("Reset"))
+        reset();
+    ImGui::SameLine();
+    if (ImGui::Button("Reseed"))
+        reseed();
+    bool autoSteps = m_stepsPerFrame == 0;
+    if (ImGui::Checkbox("auto", &autoSteps))
+        m_stepsPerFrame = autoSteps ? 0 : m_autoSteps;
+    ImGui::SameLine();
+    int steps = m_stepsPerFrame > 0 ? m_stepsPerFrame : m_autoSteps;
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::SliderInt("##steps", &steps, 1, 2000, "%d steps/frame",
+                         ImGuiSliderFlags_Logarithmic))
+        m_stepsPerFrame = std::max(1, steps);
+    if (m_doc.run().position().segments > 1) {
+        const RunPosition p = m_doc.run().position();
+        ImGui::Text("stage %d of %d, step %d", p.segment + 1, p.segments, p.segmentStep);
+    }
+    ImGui::Separator();
+    if (ImGui::CollapsingHeader("Model and operator", ImGuiTreeNodeFlags_DefaultOpen))
+        drawModelSection();
+    if (ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen))
+        drawParamsSection();
+    if (ImGui::CollapsingHeader("Brush", ImGuiTreeNodeFlags_DefaultOpen))
+        drawBrushSection();
+    if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
+        drawDisplaySection();
+    ImGui::End();
+}
+
+void Designer::drawModelSection() {
+    const Session& base = m_doc.session();
+    const ReactionModel& model = base.reactionModel();
+    ImGui::TextWrapped("%s", base.name.empty() ? "(unnamed session)" : base.name.c_str());
+    if (!base.description.empty())
+        ImGui::TextDisabled("%s", base.description.c_str());
+
+    if (ImGui::BeginCombo("model", model.name().c_str())) {
+        for (const std::string& name : splitNameList(modelNames())) {
+            if (ImGui::Selectable(name.c_str(), name == model.name()) && name != model.name())
+                guarded("model", [&] {
+                    // A fresh session of the model at this size: its defaults.
+                    json j = {{"model", name},
+                              {"size", {base.width, base.height}},
+                              {"seed", base.seed},
+                              {"colormap", {{"name", base.colormap.name}}}};
+                    if (base.length > 0)
+                        j["length"] = base.length;
+                    Session s = sessionFromJson(j, "the designer's session");
+                    s.name = name;
+                    m_doc.replace(std::move(s), "model " + name);
+                    m_displayChemical = -1;
+                });
+        }
+        ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s", model.description().c_str());
+
+    int op = operatorIndex(base.diffusion);
+    if (ImGui::Combo("operator", &op, kOperatorLabels, IM_ARRAYSIZE(kOperatorLabels)) &&
+        op != operatorIndex(base.diffusion)) {
+        guarded("operator", [&] {
+            Session s = edited(base, [&](json& j) {
+                json d;
+                if (op <= 1) {
+                    d = {{"type", "isotropic"}, {"stencil", op == 0 ? "5-point" : "9-point"}};
+                } else if (op == 2) {
+                    d = {{"type", "anisotropic"}, {"tensors", json::object()}};
+                    for (const ChemicalSpec& c : model.chemicals())
+                        if (!c.diffusionParam.empty())
+                            d["tensors"][c.name] = {{"theta", 0}, {"a1", 2}, {"a2", 1}};
+                } else {
+                    d = {{"type", "generalized"}, {"tensors", json::object()}};
+                    for (const ChemicalSpec& c : model.chemicals())
+                        if (!c.diffusionParam.empty())
+                            d["tensors"][c.name] = "c";
+                }
+                j["diffusion"] = d;
+            });
+            m_doc.replace(std::move(s), std::string("operator ") + kOperatorLabels[op]);
+        });
+    }
+    // The operator's own settings: a change restarts the run (a saved
+    // session reproduces a run only from its start).
+    if (base.diffusion.type == DiffusionType::Anisotropic) {
+        for (const auto& [chemical, tensor] : base.diffusion.anisotropic) {
+            float values[3] = {float(tensor.theta), float(tensor.a1), float(tensor.a2)};
+            ImGui::PushID(chemical.c_str());
+            ImGui::Text("%s: angle, a1, a2", chemical.c_str());
+            ImGui::DragFloat3("##tensor", values, 0.05f);
+            if (ImGui::IsItemDeactivatedAfterEdit())
+                guarded("tensor", [&] {
+                    Session s = edited(base, [&](json& j) {
+                        j["diffusion"]["tensors"][chemical] = {
+                            {"theta", values[0]}, {"a1", values[1]}, {"a2", values[2]}};
+                    });
+                    m_doc.replace(std::move(s), "tensor of " + chemical);
+                });
+            ImGui::PopID();
+        }
+    } else if (base.diffusion.type == DiffusionType::Generalized) {
+        for (const auto& [chemical, set] : base.diffusion.generalized) {
+            ImGui::PushID(chemical.c_str());
+            if (ImGui::BeginCombo(("tensors " + chemical).c_str(), set.c_str())) {
+                for (const char* letter : {"a", "b", "c", "d", "e", "f"})
+                    if (ImGui::Selectable(letter, set == letter) && set != letter)
+                        guarded("tensor set", [&] {
+                            Session s = edited(base, [&](json& j) {
+                                j["diffusion"]["tensors"][chemical] = letter;
+                            });
+                            m_doc.replace(std::move(s), "tensor set " + std::string(letter));
+                        });
+                ImGui::EndCombo();
+            }
+            drawPropagator(set);
+            ImGui::PopID();
+        }
+    }
+
+    int integrator = base.integrator == Integrator::ExplicitEuler ? 0 : 1;
+    const char* integrators[] = {"explicit Euler", "semi-implicit"};
+    if (ImGui::Combo("integrator", &integrator, integrators, 2))
+        guarded("integrator", [&] {
+            Session s = edited(base, [&](json& j) {
+                j["integrator"] = integrator == 0 ? "explicit_euler" : "semi_implicit";
+            });
+            m_doc.replace(std::move(s), std::string("integrator ") + integrators[integrator]);
+        });
+    int edges = base.edges == EdgeMode::Periodic ? 0 : 1;
+    const char* edgeNames[] = {"periodic (tiles seamlessly)", "clamped"};
+    if (ImGui::Combo("edges", &edges, edgeNames, 2))
+        guarded("edges", [&] {
+            Session s =
+                edited(base, [&](json& j) { j["edges"] = edges == 0 ? "periodic" : "clamped"; });
+            m_doc.replace(std::move(s), "edges");
+        });
+    int size[2] = {base.width, base.height};
+    ImGui::InputInt2("grid", size);
+    if (ImGui::IsItemDeactivatedAfterEdit() && (size[0] != base.width || size[1] != base.height))
+        guarded("grid size", [&] {
+            if (size[0] < 8 || size[1] < 8 || size[0] > 4096 || size[1] > 4096)
+                throw InputError("grid " + std::to_string(size[0]) + " x " +
+                                 std::to_string(size[1]) +
+                                 " is outside 8..4096 per side (the canvas; exports go larger)");
+            Session s = base;
+            resizeSession(s, size[0], size[1]);
+            m_doc.replace(std::move(s), "grid size");
+        });
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("cells of the canvas; the pattern keeps its size in the picture");
+}
+
+void Designer::drawParamsSection() {
+    const Session& live = m_doc.live();
+    const ReactionModel& model = live.reactionModel();
+    for (const ParamSpec& p : model.params()) {
+        float value = live.params.at(p.name);
+        ImGui::PushID(p.name.c_str());
+        ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.62f);
+        // Ctrl+click types a value; the range is the model's.
+        const bool changed = ImGui::SliderFloat(p.name.c_str(), &value, p.min, p.max, "%.5g",
+                                                p.max / std::max(p.min, 1e-9f) > 1000 && p.min > 0
+                                                    ? ImGuiSliderFlags_Logarithmic
+                                                    : ImGuiSliderFlags_None);
+        if (ImGui::IsItemActivated())
+            m_doc.beginChange("change " + p.name);
+        if (changed)
+            guarded("parameter", [&] { m_doc.setParam(p.name, std::clamp(value, p.min, p.max)); });
+        if (ImGui::IsItemDeactivated())
+            m_doc.endChange();
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s\nrange %g .. %g, default %g\nCtrl+click to type a value",
+                              p.description.c_str(), p.min, p.max, p.defaultValue);
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(-1);
+        float typed = value;
+        if (ImGui::InputFloat("##typed", &typed, 0, 0, "%.6g",
+                              ImGuiInputTextFlags_EnterReturnsTrue) &&
+            typed != value) {
+            if (typed < p.min || typed > p.max)
+                reportError(p.name + " = " + std::to_string(typed) + " is outside its range " +
+                            std::to_string(p.min) + " .. " + std::to_string(p.max));
+            else
+                changeParam(p.name, typed);
+        }
+        ImGui::PopID();
+    }
+    // dt, as a session dt (the run divides it among substeps).
+    float dt = live.dt * float(m_doc.run().substeps());
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.62f);
+    const bool changed =
+        ImGui::SliderFloat("dt", &dt, 0.001f, 4.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
+    if (ImGui::IsItemActivated())
+        m_doc.beginChange("change dt");
+    if (changed)
+        guarded("dt", [&] { m_doc.setDt(std::max(dt, 1e-4f)); });
+    if (ImGui::IsItemDeactivated())
+        m_doc.endChange();
+
+    // The stability report of the values in force, as the CLI checks them.
+    Session check = live;
+    check.steps = 1;
+    check.stages.clear();
+    check.dt = dt;
+    static std::string cachedKey, cachedText;
+    static bool cachedWarning = false;
+    const std::string key = sessionToJson(check).dump();
+    if (key != cachedKey) {
+        cachedKey = key;
+        cachedText.clear();
+        cachedWarning = false;
+        try {
+            const StabilityReport report = checkSessionStability(check, true);
+            for (const StabilityNote& n : report.notes) {
+                cachedText += n.text + "\n";
+                cachedWarning = cachedWarning || n.warning;
+            }
+            if (report.refused) {
+                cachedText += *report.refused;
+                cachedWarning = true;
+            }
+            if (report.capped) {
+                cachedText += "dt is above the stable limit: the CLI would cap it to " +
+                              std::to_string(check.dt);
+                cachedWarning = true;
+            }
+        } catch (const std::exception& e) {
+            cachedText = e.what();
+            cachedWarning = true;
+        }
+        if (cachedText.empty())
+            cachedText = "stable";
+    }
+    ImGui::PushStyleColor(ImGuiCol_Text,
+                          cachedWarning ? ImVec4(1, 0.7f, 0.3f, 1) : ImVec4(0.6f, 0.9f, 0.6f, 1));
+    ImGui::TextWrapped("%s", cachedText.c_str());
+    ImGui::PopStyleColor();
+}
+
+void Designer::drawBrushSection() {
+    const ReactionModel& model = m_doc.live().reactionModel();
+    const char* modes[] = {"add", "remove", "set", "hold", "release", "distort", "paint"};
+    int mode = int(m_brush.mode);
+    if (ImGui::Combo("mode", &mode, modes, IM_ARRAYSIZE(modes)))
+        m_brush.mode = BrushMode(mode);
+    if (writesChemical(m_brush.mode)) {
+        const int shown = m_brush.chemical >= 0 && m_brush.chemical < int(model.chemicals().size())
+                              ? m_brush.chemical
+                              : model.displayChemical();
+        if (ImGui::BeginCombo("chemical", model.chemicals()[std::size_t(shown)].name.c_str())) {
+            for (int c = 0; c < int(model.chemicals().size()); ++c)
+                if (ImGui::Selectable(model.chemicals()[std::size_t(c)].name.c_str(), c == shown))
+                    m_brush.chemical = c;
+            ImGui::EndCombo();
+        }
+        ImGui::SliderFloat("amount", &m_brush.value, -2.0f, 2.0f, "%.3f");
+    } else if (m_brush.mode == BrushMode::Paint) {
+        const ParamSpec* p = model.param(m_brush.param);
+        if (!p) {
+            p = &model.params().front();
+            m_brush.param = p->name;
+            m_brush.value = m_doc.live().params.at(p->name);
+        }
+        if (ImGui::BeginCombo("parameter", m_brush.param.c_str())) {
+            for (const ParamSpec& q : model.params())
+                if (ImGui::Selectable(q.name.c_str(), q.name == m_brush.param)) {
+                    m_brush.param = q.name;
+                    m_brush.value = m_doc.live().params.at(q.name);
+                }
+            ImGui::EndCombo();
+        }
+        p = model.param(m_brush.param);
+        ImGui::SliderFloat("value", &m_brush.value, p->min, p->max, "%.5g");
+    }
+    ImGui::SliderFloat("radius", &m_brush.radius, 0.002f, 0.5f, "%.3f of width",
+                       ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("falloff", &m_brush.falloff, 0.0f, 1.0f, "%.2f");
+    ImGui::TextDisabled("left drag paints, right or middle drag pans, wheel zooms");
+}
+
+void Designer::drawDisplaySection() {
+    const Session& base = m_doc.live();
+    const ReactionModel& model = base.reactionModel();
+    const int shown =
+        m_displayChemical >= 0 ? m_displayChemical : colormapChemical(base.colormap, model);
+    if (ImGui::BeginCombo("shows", model.chemicals()[std::size_t(shown)].name.c_str())) {
+        for (int c = 0; c < int(model.chemicals().size()); ++c)
+            if (ImGui::Selectable(model.chemicals()[std::size_t(c)].name.c_str(), c == shown))
+                m_displayChemical = c;
+        ImGui::EndCombo();
+    }
+    // The colour map changes the picture, not the run: no restart.
+    if (ImGui::BeginCombo("colours", base.colormap.name.c_str())) {
+        for (const std::string& name : colormapNames())
+            if (name != "custom" && ImGui::Selectable(name.c_str(), name == base.colormap.name))
+                guarded("colour map", [&] {
+                    ColorMapSpec spec = base.colormap;
+                    spec.name = name;
+                    m_doc.setColormap(spec);
+                });
+        ImGui::EndCombo();
+    }
+    ImGui::Checkbox("tiled 3x3", &m_tiled);
+    ImGui::SameLine();
+    ImGui::Checkbox("nearest texels", &m_nearest);
+}
+
+} // namespace morphogen::ui

@@ -1,0 +1,281 @@
+#include "ui/document.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <utility>
+
+#include "core/base/errors.hpp"
+#include "core/base/limits.hpp"
+
+namespace morphogen::ui {
+
+Session openEnded(Session s) {
+    s.coarseToFine = false;
+    if (!s.schedule.empty()) {
+        // The canvas is one size: the levels' steps run at the final size.
+        s.schedule.clear();
+    }
+    const long long extra = kMaxSteps / 2;
+    if (s.stages.empty()) {
+        s.steps = int(kMaxSteps);
+    } else {
+        s.stages.back().steps = int(std::min<long long>(s.stages.back().steps + extra, kMaxSteps));
+        long long total = 0;
+        for (const Stage& stage : s.stages)
+            total += stage.steps;
+        s.steps = int(std::min<long long>(total, kMaxSteps));
+    }
+    return s;
+}
+
+Document::Document(SimulatorFactory makeSimulator) : m_make(std::move(makeSimulator)) {}
+
+std::unique_ptr<SessionRun> Document::startRun(const Session& base) const {
+    // No blow-up checks inside advance: the designer checks each frame's
+    // result itself (a check reads the whole state back).
+    return std::make_unique<SessionRun>(openEnded(base), m_make, 0);
+}
+
+void Document::swapSession(Session base, std::unique_ptr<SessionRun> run, std::string path,
+                           const std::string& label) {
+    if (m_run) {
+        // The old session and run wait in the undo step (a GPU run keeps its
+        // textures: kMaxUndo bounds how many).
+        auto old = std::make_shared<std::pair<Session, std::unique_ptr<SessionRun>>>(
+            std::move(m_base), std::move(m_run));
+        auto oldPath = std::make_shared<std::string>(m_path);
+        auto swap = [this, old, oldPath] {
+            std::swap(m_base, old->first);
+            std::swap(m_run, old->second);
+            std::swap(m_path, *oldPath);
+            m_history.clear();
+            m_dirty = true;
+        };
+        m_base = std::move(base);
+        m_run = std::move(run);
+        m_path = std::move(path);
+        push({label, swap, swap});
+    } else {
+        m_base = std::move(base);
+        m_run = std::move(run);
+        m_path = std::move(path);
+    }
+    m_history.clear();
+}
+
+void Document::open(Session session, const std::string& path) {
+    std::unique_ptr<SessionRun> run = startRun(session); // throws before anything changes
+    const bool first = !m_run;
+    swapSession(std::move(session), std::move(run), path, "open " + session.name);
+    m_dirty = false;
+    if (first) {
+        m_undo.clear();
+        m_redo.clear();
+    }
+}
+
+int Document::advance(int sessionSteps) {
+    assert(m_run);
+    const int n = m_run->advance(sessionSteps * m_run->substeps());
+    if (n > 0)
+        m_dirty = true;
+    return n;
+}
+
+void Document::reset() {
+    replace(m_base, "reset");
+}
+
+void Document::reseed(std::uint64_t seed) {
+    Session s = m_base;
+    s.seed = seed;
+    replace(std::move(s), "reseed");
+}
+
+void Document::replace(Session session, const std::string& label) {
+    std::unique_ptr<SessionRun> run = startRun(session);
+    swapSession(std::move(session), std::move(run), m_path, label);
+    m_dirty = true;
+}
+
+void Document::setColormap(const ColorMapSpec& colormap) {
+    const ColorMapSpec before = m_base.colormap;
+    auto set = [this](const ColorMapSpec& c) {
+        m_base.colormap = c;
+        m_run->setColormap(c);
+        m_dirty = true;
+    };
+    set(colormap);
+    push({"colour map " + colormap.name, [set, before] { set(before); },
+          [set, colormap] { set(colormap); }});
+}
+
+void Document::beginChange(const std::string& label) {
+    assert(m_run && !m_change);
+    m_change = OpenChange{label, live().params, m_run->segmentSession().dt * m_run->substeps()};
+}
+
+void Document::setParam(const std::string& name, float value) {
+    LiveEdit e;
+    e.params[name] = value;
+    m_run->applyEdit(std::move(e));
+    m_dirty = true;
+}
+
+void Document::setDt(float dt) {
+    LiveEdit e;
+    e.dt = dt;
+    m_run->applyEdit(std::move(e));
+    m_dirty = true;
+}
+
+void Document::endChange() {
+    if (!m_change)
+        return;
+    const OpenChange before = std::move(*m_change);
+    m_change.reset();
+    const ParamValues after = live().params;
+    const float afterDt = m_run->segmentSession().dt * m_run->substeps();
+    if (after == before.params && afterDt == before.dt)
+        return;
+    // Undo is another live edit (the pattern grown since stays): parameters
+    // are settings, not paint.
+    auto apply = [this](const ParamValues& params, float dt) {
+        LiveEdit e;
+        e.params = params;
+        e.dt = dt;
+        m_run->applyEdit(std::move(e));
+        m_dirty = true;
+    };
+    push({before.label, [apply, before] { apply(before.params, before.dt); },
+          [apply, after, afterDt] { apply(after, afterDt); }});
+}
+
+void Document::beginStroke(const StrokeSpec& brush) {
+    assert(m_run && !m_stroke);
+    m_stroke = OpenStroke{brush, m_run->checkpoint(), {}, std::nullopt};
+}
+
+void Document::extendStroke(const std::vector<std::array<double, 2>>& points) {
+    if (!m_stroke || points.empty())
+        return;
+    StrokeSpec piece = m_stroke->brush;
+    piece.points.clear();
+    // Each piece starts where the last one ended, so the swept line has no gaps.
+    if (m_stroke->last)
+        piece.points.push_back(*m_stroke->last);
+    piece.points.insert(piece.points.end(), points.begin(), points.end());
+    // Randomise: each piece draws its own noise.
+    piece.seed = m_stroke->brush.seed + m_stroke->pieces.size();
+    piece.continues = !m_stroke->pieces.empty();
+    LiveEdit e;
+    e.stroke = piece;
+    m_run->applyEdit(std::move(e));
+    m_stroke->pieces.push_back(std::move(piece));
+    m_stroke->last = points.back();
+    m_dirty = true;
+}
+
+void Document::endStroke() {
+    if (!m_stroke)
+        return;
+    OpenStroke stroke = std::move(*m_stroke);
+    m_stroke.reset();
+    if (stroke.pieces.empty())
+        return;
+    auto before = std::make_shared<RunCheckpoint>(std::move(stroke.before));
+    auto pieces = std::make_shared<std::vector<StrokeSpec>>(std::move(stroke.pieces));
+    // Undo goes back to the moment before the stroke, state and all: the
+    // steps run since are undone with it.
+    auto undo = [this, before] {
+        m_run->restore(*before);
+        m_dirty = true;
+    };
+    auto redo = [this, pieces] {
+        for (const StrokeSpec& piece : *pieces) {
+            LiveEdit e;
+            e.stroke = piece;
+            m_run->applyEdit(std::move(e));
+        }
+        m_dirty = true;
+    };
+    push({toString(pieces->front().mode) + " stroke", undo, redo});
+}
+
+void Document::push(Action action) {
+    m_undo.push_back(std::move(action));
+    if (m_undo.size() > kMaxUndo)
+        m_undo.erase(m_undo.begin());
+    m_redo.clear();
+}
+
+void Document::undo() {
+    if (m_undo.empty())
+        return;
+    Action a = std::move(m_undo.back());
+    m_undo.pop_back();
+    a.undo();
+    m_redo.push_back(std::move(a));
+    // A restored checkpoint forgets later edits; snapshots past it no longer
+    // belong to this run.
+    while (!m_history.empty() && m_history.back().step > steps())
+        m_history.pop_back();
+}
+
+void Document::redo() {
+    if (m_redo.empty())
+        return;
+    Action a = std::move(m_redo.back());
+    m_redo.pop_back();
+    a.redo();
+    m_undo.push_back(std::move(a));
+}
+
+Session Document::completed() const {
+    Session s = m_run->completed();
+    s.name = m_base.name;
+    s.description = m_base.description;
+    return s;
+}
+
+void Document::save(const std::string& path) {
+    saveSessionFile(completed(), path);
+    m_path = path;
+    m_dirty = false;
+}
+
+void Document::recordSnapshot() {
+    if (!m_history.empty() && m_history.back().step >= steps())
+        return;
+    m_history.push_back({steps(), m_run->checkpoint()});
+    auto bytes = [&] {
+        std::size_t total = 0;
+        for (const Snapshot& s : m_history)
+            total += s.checkpoint.state.cellCount() * std::size_t(s.checkpoint.state.channels()) *
+                     sizeof(float);
+        return total;
+    };
+    // Thin out the older half: the timeline keeps its whole span, coarser
+    // towards the start.
+    while (m_history.size() > 2 && bytes() > m_historyBudget) {
+        for (std::size_t i = 1; i + 1 < m_history.size() && i < m_history.size() / 2; ++i)
+            m_history.erase(m_history.begin() + std::ptrdiff_t(i));
+        if (m_history.size() <= 2)
+            break;
+    }
+}
+
+void Document::branch(std::size_t index) {
+    assert(index < m_history.size());
+    auto before = std::make_shared<RunCheckpoint>(m_run->checkpoint());
+    auto target = std::make_shared<RunCheckpoint>(m_history[index].checkpoint);
+    m_run->restore(*target);
+    m_history.erase(m_history.begin() + std::ptrdiff_t(index) + 1, m_history.end());
+    m_dirty = true;
+    // Undo returns to where the run was, edits and all.
+    push({"go back to step " + std::to_string(m_history[index].step),
+          [this, before] { m_run->restore(*before); },
+          [this, target] { m_run->restore(*target); }});
+}
+
+} // namespace morphogen::ui

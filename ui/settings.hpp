@@ -1,0 +1,35 @@
+#pragma once
+
+#include <string>
+
+namespace morphogen::ui {
+
+// What the designer remembers between runs (designer.json in the config
+// folder) and where its files go. Reading never fails: a missing or broken
+// file gives the defaults (a broken one with a warning on stderr).
+struct Settings {
+    std::string configDir; // settings, Dear ImGui's window state
+    std::string stateDir;  // autosaves
+    std::string lastFolder;
+    std::string lastSession; // the session open at the last exit ("" for a preset)
+    std::string lastPreset;
+    int windowWidth = 1600, windowHeight = 1000;
+    float controlsWidth = 340, sideWidth = 300;
+
+    // configDir/stateDir empty: $XDG_CONFIG_HOME/morphogen and
+    // $XDG_STATE_HOME/morphogen, or ~/.config/morphogen and
+    // ~/.local/state/morphogen.
+    static Settings load(const std::string& configDir, const std::string& stateDir);
+    // Best effort (a warning on stderr when it cannot write).
+    void save() const;
+
+    std::string settingsPath() const;
+    std::string imguiIniPath() const;
+    // Written every minute while there are unsaved changes and on exit;
+    // removed by a clean exit after the session is saved as lastExitPath().
+    // Found at start, it means the last run ended without a clean exit.
+    std::string autosavePath() const;
+    std::string lastExitPath() const;
+};
+
+} // namespace morphogen::ui

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/session/session.hpp"
+#include "gl/objects.hpp"
+
+namespace morphogen::ui {
+
+// The presets browser's thumbnails, rendered by the engine: each preset run
+// at kSize x kSize on the CPU backend (the same pattern at a small size: the
+// sessions are resolution independent) on a worker thread with one OpenMP
+// thread, so the window and the live run keep going. The textures are made
+// on the main thread as the pictures arrive.
+class Thumbnails {
+public:
+    static constexpr int kSize = 64;
+
+    Thumbnails() = default;
+    ~Thumbnails(); // stops the worker after the preset it is on
+    Thumbnails(const Thumbnails&) = delete;
+    Thumbnails& operator=(const Thumbnails&) = delete;
+
+    void start(std::vector<Session> presets);
+    // The GL texture of a preset's thumbnail, 0 until it is rendered (or
+    // when it could not be: a surface preset, a refused session). Main thread.
+    unsigned texture(const std::string& name);
+    int rendered() const { return m_rendered.load(); }
+    int total() const { return m_total; }
+
+private:
+    void work(std::vector<Session> presets);
+
+    std::thread m_worker;
+    std::atomic<bool> m_stop{false};
+    std::atomic<int> m_rendered{0};
+    int m_total = 0;
+    std::mutex m_mutex;
+    std::map<std::string, std::vector<float>> m_pending; // RGBA, rows top first
+    std::map<std::string, gl::Texture2D> m_textures;
+};
+
+} // namespace morphogen::ui
