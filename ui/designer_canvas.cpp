@@ -217,13 +217,9 @@ void Designer::drawPresets() {
         for (const Session* s : presets) {
             ImGui::PushID(s->name.c_str());
             const unsigned texture = m_thumbnails.texture(s->name);
-            const ImVec2 start = ImGui::GetCursorPos();
             const bool current = m_doc.isOpen() && m_doc.session().name == s->name;
-            if (ImGui::Selectable("##pick", current, 0, ImVec2(0, thumb)))
-                openPreset(s->name);
-            if (ImGui::IsItemHovered() && !s->description.empty())
-                ImGui::SetTooltip("%s", s->description.c_str());
-            ImGui::SetCursorPos(start);
+            // The thumbnail and the wrapped description as one clickable row.
+            ImGui::BeginGroup();
             if (texture)
                 ImGui::Image(textureId(texture), ImVec2(thumb, thumb));
             else
@@ -232,11 +228,22 @@ void Designer::drawPresets() {
             ImGui::BeginGroup();
             ImGui::TextUnformatted(s->name.c_str());
             ImGui::PushTextWrapPos(0);
-            ImGui::TextDisabled("%s", s->surface.active() ? "on a 3D model (render --mesh)"
-                                                          : s->description.c_str());
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+            ImGui::TextUnformatted(s->surface.active() ? "on a 3D model: render --mesh"
+                                                       : s->description.c_str());
+            ImGui::PopStyleColor();
             ImGui::PopTextWrapPos();
             ImGui::EndGroup();
-            ImGui::SetCursorPos(ImVec2(start.x, start.y + thumb + 4));
+            ImGui::EndGroup();
+            const ImVec2 lo = ImGui::GetItemRectMin();
+            const ImVec2 hi(lo.x + ImGui::GetContentRegionAvail().x, ImGui::GetItemRectMax().y);
+            const bool hovered = ImGui::IsMouseHoveringRect(lo, hi) && ImGui::IsWindowHovered();
+            if (current || hovered)
+                ImGui::GetWindowDrawList()->AddRectFilled(
+                    lo, hi, current ? IM_COL32(66, 150, 250, 60) : IM_COL32(255, 255, 255, 25));
+            if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !s->surface.active())
+                openPreset(s->name);
+            ImGui::Dummy(ImVec2(0, 2));
             ImGui::PopID();
         }
     }

@@ -137,8 +137,11 @@ void Designer::drawModelSection() {
     const Session& base = m_doc.session();
     const ReactionModel& model = base.reactionModel();
     ImGui::TextWrapped("%s", base.name.empty() ? "(unnamed session)" : base.name.c_str());
-    if (!base.description.empty())
-        ImGui::TextDisabled("%s", base.description.c_str());
+    if (!base.description.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("%s", base.description.c_str());
+        ImGui::PopStyleColor();
+    }
 
     if (ImGui::BeginCombo("model", model.name().c_str())) {
         for (const std::string& name : splitNameList(modelNames())) {
@@ -381,7 +384,10 @@ void Designer::drawBrushSection() {
     ImGui::SliderFloat("radius", &m_brush.radius, 0.002f, 0.5f, "%.3f of width",
                        ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("falloff", &m_brush.falloff, 0.0f, 1.0f, "%.2f");
-    ImGui::TextDisabled("left drag paints, right or middle drag pans, wheel zooms");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("Left drag paints, right or middle drag pans, the wheel zooms, [ and ] "
+                       "size the brush.");
+    ImGui::PopStyleColor();
 }
 
 void Designer::drawDisplaySection() {

@@ -242,17 +242,18 @@ void ScriptPlayer::beforeFrame(Designer& d) {
         io.KeysDown[m_key] = false;
         io.KeyCtrl = io.KeyShift = false;
         m_key = -1;
+        return; // a frame with the key up, so that the next press is a new one
     }
     checkErrors(d);
     if (m_failed)
         return;
+    if (m_untilStep >= 0 && d.document().steps() >= m_untilStep)
+        m_untilStep = -1;
     while (m_wait == 0 && m_untilStep < 0 && !m_dragging && m_key < 0 &&
            m_next < m_commands.size()) {
         if (!start(d, m_commands[m_next++]))
             break;
     }
-    if (m_untilStep >= 0 && d.document().steps() >= m_untilStep)
-        m_untilStep = -1;
     if (m_key >= 0 && !m_releaseKey) {
         io.KeysDown[m_key] = true;
         io.KeyCtrl = m_ctrl;

@@ -1,0 +1,179 @@
+// The designer for real: `morphogen design --script` in a virtual X server
+// (ctest runs this under xvfb-run), driven through the same input path as a
+// person. It opens a session, grows it, paints a stroke with the mouse,
+// undoes and redoes it with the keyboard, saves, exports and screenshots the
+// window, and quits; then `morphogen render` renders the saved session to
+// the very same image file.
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "core/io/image_io.hpp"
+#include "core/session/session.hpp"
+
+using namespace morphogen;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path work() {
+    static const fs::path dir = [] {
+        fs::path d = fs::temp_directory_path() / "morphogen_designer_xtest";
+        fs::remove_all(d);
+        fs::create_directories(d);
+        return d;
+    }();
+    return dir;
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+std::string readText(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Runs the morphogen binary with `args`; returns its exit code, its stderr in `err`.
+int runMorphogen(const std::string& args, std::string* err = nullptr) {
+    const fs::path log = work() / "stderr.txt";
+    const std::string command =
+        std::string(MORPHOGEN_BINARY) + " " + args + " 2> " + log.string() + " > /dev/null";
+    const int status = std::system(command.c_str());
+    if (err)
+        *err = readText(log);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int strokeEdits(const Session& s) {
+    int n = 0;
+    for (const LiveEdit& e : s.edits)
+        n += e.stroke.has_value();
+    return n;
+}
+
+} // namespace
+
+TEST(Designer, ScriptedSessionSavesWhatRenderReproduces) {
+    const fs::path dir = work();
+    // A small canvas keeps the test quick on the CPU backend.
+    Session start = loadPreset("gs_coral");
+    resizeSession(start, 96, 96);
+    start.steps = 0;
+    saveSessionFile(start, (dir / "start.json").string());
+    const std::string d = dir.string() + "/";
+    writeText(dir / "script.txt", "open " + d +
+                                      "start.json\n"
+                                      "steps-per-frame 20\n"
+                                      "play\n"
+                                      "until-step 200\n"
+                                      "pause\n"
+                                      "expect-steps 200\n"
+                                      "brush add chemical v value 0.5 radius 0.08 falloff 0.3\n"
+                                      "drag 0.2 0.25 0.8 0.7 12\n"
+                                      "save " +
+                                      d +
+                                      "painted.json\n"
+                                      "key ctrl+z\n"
+                                      "save " +
+                                      d +
+                                      "undone.json\n"
+                                      "key ctrl+shift+z\n"
+                                      "play\n"
+                                      "until-step 300\n"
+                                      "pause\n"
+                                      "screenshot " +
+                                      d +
+                                      "window.png\n"
+                                      "save " +
+                                      d +
+                                      "saved.json\n"
+                                      "export " +
+                                      d +
+                                      "export.png\n"
+                                      "quit\n");
+    std::string err;
+    const int code =
+        runMorphogen("design --backend cpu --script " + d + "script.txt --config-dir " + d +
+                         "config --state-dir " + d + "state",
+                     &err);
+    ASSERT_EQ(code, 0) << err;
+
+    // The mouse drag became one stroke (several pieces), ctrl+z took it back
+    // and ctrl+shift+z brought it back.
+    const Session painted = loadSessionFile(d + "painted.json");
+    const Session undone = loadSessionFile(d + "undone.json");
+    const Session saved = loadSessionFile(d + "saved.json");
+    EXPECT_EQ(painted.steps, 200);
+    EXPECT_GE(strokeEdits(painted), 3);
+    EXPECT_EQ(strokeEdits(undone), 0);
+    EXPECT_EQ(strokeEdits(saved), strokeEdits(painted));
+    EXPECT_EQ(saved.steps, 300);
+
+    // The window shows the pattern: many colours in the canvas area, not a
+    // blank or black window. The canvas fills the middle of the window.
+    const RawImage shot = readRawImage(d + "window.png");
+    const int w = shot.state.width(), h = shot.state.height();
+    ASSERT_GE(w, 640);
+    std::set<int> colours;
+    double sum = 0, sum2 = 0;
+    int n = 0;
+    for (int y = h / 4; y < 3 * h / 4; ++y)
+        for (int x = 2 * w / 5; x < 3 * w / 5; ++x) {
+            const float r = shot.state.at(0, x, y), g = shot.state.at(1, x, y),
+                        b = shot.state.at(2, x, y);
+            colours.insert(int(r * 31) << 10 | int(g * 31) << 5 | int(b * 31));
+            const double l = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+            sum += l;
+            sum2 += l * l;
+            ++n;
+        }
+    const double mean = sum / n, spread = std::sqrt(std::max(0.0, sum2 / n - mean * mean));
+    EXPECT_GT(colours.size(), 30u);
+    EXPECT_GT(spread, 0.08) << "the canvas area is nearly flat: mean " << mean;
+
+    // The saved session, rendered by the CLI, is the exported image byte for byte.
+    ASSERT_EQ(
+        runMorphogen("render --backend cpu --session " + d + "saved.json --out " + d + "render.png",
+                     &err),
+        0)
+        << err;
+    EXPECT_EQ(readText(d + "render.png"), readText(d + "export.png"));
+    // A clean exit leaves no crash autosave behind.
+    EXPECT_FALSE(fs::exists(dir / "state" / "autosave.json"));
+}
+
+TEST(Designer, BadScriptIsRefusedBeforeAWindowOpens) {
+    const fs::path dir = work();
+    writeText(dir / "bad.txt", "play\nfrobnicate 3\n");
+    std::string err;
+    EXPECT_EQ(runMorphogen("design --script " + (dir / "bad.txt").string(), &err), 2);
+    EXPECT_NE(err.find("bad.txt: line 2: unknown command 'frobnicate'"), std::string::npos) << err;
+    writeText(dir / "bad2.txt", "drag 0.1 0.2 x 0.4\n");
+    EXPECT_EQ(runMorphogen("design --script " + (dir / "bad2.txt").string(), &err), 2);
+    EXPECT_NE(err.find("line 1: 'x' is not a number"), std::string::npos) << err;
+    EXPECT_EQ(runMorphogen("design --script " + (dir / "missing.txt").string(), &err), 2);
+    EXPECT_NE(err.find("missing.txt: cannot read the script"), std::string::npos) << err;
+}
+
+TEST(Designer, AFailingScriptStepExitsNonZero) {
+    const fs::path dir = work();
+    writeText(dir / "fails.txt", "preset no_such_preset\nquit\n");
+    std::string err;
+    EXPECT_EQ(runMorphogen("design --backend cpu --script " + (dir / "fails.txt").string() +
+                               " --config-dir " + (dir / "c2").string() + " --state-dir " +
+                               (dir / "s2").string(),
+                           &err),
+              1);
+    EXPECT_NE(err.find("script line 1 failed"), std::string::npos) << err;
+    EXPECT_NE(err.find("no_such_preset"), std::string::npos) << err;
+}
