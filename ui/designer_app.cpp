@@ -69,7 +69,7 @@ Designer::Designer(const DesignerOptions& options, const DesignerServices& servi
         openSessionFile(m_settings.lastSession);
     else
         openPreset(m_settings.lastPreset.empty() ? kDefaultPreset : m_settings.lastPreset);
-    if (!m_doc.isOpen())
+    if (!m_doc.isOpen() && !m_job)
         openPreset(kDefaultPreset);
     // A crash (or a kill) leaves the autosave behind: offer it back.
     m_offerRestore = options.script.empty() && fs::exists(m_settings.autosavePath());
@@ -101,7 +101,14 @@ void Designer::reportError(const std::string& message) {
 
 void Designer::openPreset(const std::string& name) {
     guarded("open preset", [&] {
-        m_doc.open(loadPreset(name));
+        Session preset = loadPreset(name);
+        m_settings.lastPreset = name;
+        if (preset.surface.active()) {
+            openSurfaceSession(std::move(preset), "", 0);
+            return;
+        }
+        m_doc.open(std::move(preset));
+        m_surface.reset();
         m_replayTo = 0;
         m_settings.lastPreset = name;
         m_settings.lastSession.clear();
@@ -115,7 +122,12 @@ void Designer::openSessionFile(const std::string& path) {
     guarded("open", [&] {
         Session session = loadSessionFile(path);
         const long long steps = session.steps;
+        if (session.surface.active()) {
+            openSurfaceSession(std::move(session), path, steps);
+            return;
+        }
         m_doc.open(std::move(session), path);
+        m_surface.reset();
         m_replayTo = steps;
         m_settings.lastSession = fs::absolute(path).string();
         m_settings.lastFolder = fs::absolute(path).parent_path().string();
@@ -203,6 +215,47 @@ void Designer::exportAtSize(const std::string& path, int width, int height, int 
         }
         job->finished = true;
     });
+}
+
+void Designer::openSurfaceSession(Session session, const std::string& path, long long replayTo) {
+    if (m_job) {
+        reportError("wait for the running job to finish (or cancel it)");
+        return;
+    }
+    m_job = std::make_unique<BackgroundJob>();
+    m_job->title = "Building the surface tiles of " + session.surface.mesh;
+    m_job->total = 1000;
+    BackgroundJob* job = m_job.get();
+    auto prepared = std::make_shared<Session>(std::move(session));
+    auto setup = std::make_shared<SurfaceSetup>();
+    // GL-free (mesh, simplification, tiles, metric): a worker thread. Cancel
+    // abandons the result; the worker finishes the phase it is in.
+    job->worker = std::thread([job, prepared, setup] {
+        try {
+            *setup = setUpSurface(*prepared, [job](const std::string&, double fraction) {
+                job->done = int(fraction * 1000);
+            });
+            job->message = "built " + std::to_string(setup->tiles.atlas->tileCount()) + " tiles";
+        } catch (const std::exception& e) {
+            job->message = std::string("could not build the surface: ") + e.what();
+        }
+        job->finished = true;
+    });
+    // `job` is gone when finish runs: it reads the message through the capture.
+    job->finish = [this, prepared, setup, path, replayTo, message = &job->message] {
+        if (!setup->tiles.atlas)
+            throw InputError(*message);
+        m_doc.open(*prepared, path);
+        m_surface = setup;
+        m_replayTo = replayTo;
+        m_viewFramed = false;
+        m_modelStale = true;
+        m_displayChemical = -1;
+        if (!path.empty()) {
+            m_settings.lastSession = fs::absolute(path).string();
+            m_settings.lastFolder = fs::absolute(path).parent_path().string();
+        }
+    };
 }
 
 void Designer::screenshot(const std::string& path) {
@@ -337,7 +390,16 @@ void Designer::frame() {
     m_controlsWidth = std::clamp(m_controlsWidth, 200.0f, std::max(200.0f, width * 0.45f));
     m_sideWidth = std::clamp(m_sideWidth, 150.0f, std::max(150.0f, width * 0.35f));
     drawControls(0, bodyTop, m_controlsWidth, bodyHeight);
-    drawCanvas(m_controlsWidth, bodyTop, width - m_controlsWidth - m_sideWidth, bodyHeight);
+    // A session on a mesh shows its atlas and the model side by side (or either alone).
+    const float centreWidth = width - m_controlsWidth - m_sideWidth;
+    if (m_surface && m_viewMode == 0) {
+        drawCanvas(m_controlsWidth, bodyTop, centreWidth / 2, bodyHeight);
+        drawModelView(m_controlsWidth + centreWidth / 2, bodyTop, centreWidth / 2, bodyHeight);
+    } else if (m_surface && m_viewMode == 2) {
+        drawModelView(m_controlsWidth, bodyTop, centreWidth, bodyHeight);
+    } else {
+        drawCanvas(m_controlsWidth, bodyTop, centreWidth, bodyHeight);
+    }
     drawSidePanel(width - m_sideWidth, bodyTop, m_sideWidth, bodyHeight);
     drawStatusBar(height - statusHeight, statusHeight);
     drawPopups();
@@ -449,6 +511,12 @@ void Designer::handleShortcuts() {
         m_brush.radius = std::max(0.002f, m_brush.radius / 1.2f);
     else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_RIGHT_BRACKET, true))
         m_brush.radius = std::min(0.5f, m_brush.radius * 1.2f);
+    else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_1, false))
+        m_viewMode = 0;
+    else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_2, false))
+        m_viewMode = 1;
+    else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_3, false))
+        m_viewMode = 2;
     else if (ImGui::IsKeyPressed(GLFW_KEY_F1, false))
         m_showHelp = !m_showHelp;
 }
@@ -496,6 +564,13 @@ void Designer::drawMenuBar() {
             m_viewFramed = false;
         ImGui::MenuItem("Tiled 3x3 preview", "T", &m_tiled);
         ImGui::MenuItem("Nearest texels when zoomed in", nullptr, &m_nearest);
+        ImGui::Separator();
+        if (ImGui::MenuItem("Canvas and model", "1", m_viewMode == 0, m_surface != nullptr))
+            m_viewMode = 0;
+        if (ImGui::MenuItem("Canvas only", "2", m_viewMode == 1, m_surface != nullptr))
+            m_viewMode = 1;
+        if (ImGui::MenuItem("Model only", "3", m_viewMode == 2, m_surface != nullptr))
+            m_viewMode = 2;
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {
@@ -547,7 +622,9 @@ void Designer::drawJob() {
     if (m_job->finished) {
         m_job->worker.join();
         m_status = m_job->message;
-        m_job.reset();
+        std::unique_ptr<BackgroundJob> job = std::move(m_job);
+        if (job->finish && !job->cancel)
+            guarded("open", job->finish);
         return;
     }
     ImGui::OpenPopup("Working");

@@ -9,6 +9,7 @@
 #include <string>
 #include <thread>
 
+#include "core/surface/surface_setup.hpp"
 #include "gl/backend.hpp"
 #include "gl/display.hpp"
 #include "gl/glfw_context.hpp"
@@ -41,6 +42,15 @@ struct BackgroundJob {
     std::atomic<int> done{0}, total{1};
     std::atomic<bool> cancel{false}, finished{false};
     std::string message; // written by the worker before `finished`
+    // Run on the main thread once the worker has finished (the worker's
+    // result goes into the window's state there), unless it was cancelled.
+    std::function<void()> finish;
+};
+
+// The designer's 3D view: an orbit camera round the model's bounding sphere.
+struct Orbit {
+    double azimuth = 30, elevation = 20;
+    double distance = 0; // bounding-sphere radii; 0: framed
 };
 
 // The designer: one window, the document, the views and panels. Its member
@@ -100,6 +110,11 @@ private:
     void drawBrushSection();
     void drawDisplaySection();
     void drawCanvas(float x, float y, float w, float h);
+    void drawModelView(float x, float y, float w, float h);
+    void renderModelView(int width, int height);
+    // Opens a session that grows on a mesh: its tiles are built on a worker
+    // thread (a progress bar; cancel abandons it), then it opens.
+    void openSurfaceSession(Session session, const std::string& path, long long replayTo);
     void drawSidePanel(float x, float y, float w, float h);
     void drawPresets();
     void drawHistory();
@@ -147,6 +162,12 @@ private:
     int m_exportBits = 8;
     std::unique_ptr<BackgroundJob> m_job;
     Thumbnails m_thumbnails;
+    std::shared_ptr<const SurfaceSetup> m_surface; // the open session's mesh and tiles, or null
+    Orbit m_orbit;
+    gl::Texture2D m_modelImage;
+    bool m_modelStale = true;
+    std::chrono::steady_clock::time_point m_lastModelRender;
+    int m_viewMode = 0; // 0: canvas and model side by side, 1: canvas, 2: model
     std::vector<Session> m_presets;
     State m_readout; // the state under the cursor's readout, refreshed ten times a second
     std::chrono::steady_clock::time_point m_lastReadout;

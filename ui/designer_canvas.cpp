@@ -61,7 +61,10 @@ void Designer::drawCanvas(float x, float y, float w, float h) {
 
     // Strokes: the left button paints through the engine's brush writes.
     const std::array<double, 2> fraction = {cell[0] / cw, cell[1] / ch};
-    if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !m_scrub) {
+    // Painting on a surface goes through the 3D view (not built yet): the
+    // atlas canvas is for looking.
+    if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !m_scrub &&
+        !m_surface) {
         const ReactionModel& model = m_doc.live().reactionModel();
         StrokeSpec stroke;
         stroke.mode = m_brush.mode;

@@ -46,6 +46,8 @@ const char* kShortcuts[][2] = {
     {"right or middle drag", "pan"},
     {"mouse wheel", "zoom to the cursor"},
     {"Ctrl+click a slider", "type a value"},
+    {"1 / 2 / 3", "canvas and model / canvas / model (sessions on a mesh)"},
+    {"left drag in the 3D view", "orbit"},
     {"F1", "this help"},
 };
 

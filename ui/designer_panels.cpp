@@ -348,6 +348,11 @@ void Designer::drawParamsSection() {
 
 void Designer::drawBrushSection() {
     const ReactionModel& model = m_doc.live().reactionModel();
+    if (m_surface) {
+        ImGui::TextWrapped("Painting on a model is not available yet: the brushes work on flat "
+                           "canvases. Sliders, the history and exports work here.");
+        return;
+    }
     const char* modes[] = {"add", "remove", "set", "hold", "release", "distort", "paint"};
     int mode = int(m_brush.mode);
     if (ImGui::Combo("mode", &mode, modes, IM_ARRAYSIZE(modes)))

@@ -11,6 +11,7 @@
 #include "core/io/image_io.hpp"
 #include "core/output/colormap.hpp"
 #include "core/session/session.hpp"
+#include "core/surface/surface_colours.hpp"
 #include "core/surface/surface_features.hpp"
 #include "core/surface/surface_glb.hpp"
 #include "gl/surface_view.hpp"
@@ -24,45 +25,6 @@ std::string lowerExtension(const std::string& path) {
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
-}
-
-// Per atlas cell: the display chemical min-max normalised over the used texels
-// (the height of the relief) and its colour through the session's map.
-struct SurfaceColours {
-    std::vector<float> height;
-    std::vector<std::array<std::uint8_t, 4>> colours;
-};
-
-SurfaceColours surfaceColours(const RunResult& result, const Atlas& atlas) {
-    const Session& session = result.completed;
-    const int chemical = colormapChemical(session.colormap, session.outputModel());
-    const float* plane = result.state.plane(chemical);
-    float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
-    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
-        if (atlas.used(i)) {
-            low = std::min(low, plane[i]);
-            high = std::max(high, plane[i]);
-        }
-    if (!(high > low))
-        high = low + 1.0f; // a flat result (warned about already): one colour
-    SurfaceColours c;
-    c.height.assign(atlas.cellCount(), 0.0f);
-    c.colours.assign(atlas.cellCount(), {0, 0, 0, 255});
-    const ColourMapRows rows(result.state, chemical, session.colormap, low, high);
-    std::vector<float> rgb(std::size_t(atlas.width()) * 3);
-    for (int y = 0; y < atlas.height(); ++y) {
-        rows.row(y, rgb.data());
-        for (int x = 0; x < atlas.width(); ++x) {
-            const std::uint32_t i = atlas.cellAt(x, y);
-            if (!atlas.used(i))
-                continue;
-            c.height[i] = (plane[i] - low) / (high - low);
-            for (int k = 0; k < 3; ++k)
-                c.colours[i][k] = std::uint8_t(
-                    std::lround(std::clamp(rgb[std::size_t(x) * 3 + k], 0.0f, 1.0f) * 255.0f));
-        }
-    }
-    return c;
 }
 
 std::string framePath(const std::string& out, int frame) {
@@ -121,7 +83,7 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
                                             OutputFiles& files) {
     std::vector<std::string> written;
     const Atlas& atlas = *setup.tiles.atlas;
-    const SurfaceColours c = surfaceColours(result, atlas);
+    const SurfaceColours c = surfaceColours(result.state, result.completed, atlas);
     const SurfaceView& v = result.completed.surface.view;
     if (!out.empty() && isModelOutput(out)) {
         exportSurfaceGlb(setup.tiles, c.height, c.colours, files.stage(out));
