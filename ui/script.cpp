@@ -1,5 +1,6 @@
 #include "ui/script.hpp"
 
+#include <cfloat>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -27,6 +28,7 @@ const std::map<std::string, std::pair<int, int>> kVerbs = {
     {"param", {2, 2}},
     {"brush", {1, 11}},
     {"drag", {4, 5}},
+    {"hover", {2, 2}},
     {"key", {1, 1}},
     {"save", {1, 1}},
     {"export", {1, 2}},
@@ -106,7 +108,7 @@ std::vector<ScriptCommand> parseScript(const std::string& text, const std::strin
                                  std::to_string(verb->second.first) + ".." +
                                  std::to_string(verb->second.second) + " arguments, got " +
                                  std::to_string(count));
-            if (c.verb == "drag")
+            if (c.verb == "drag" || c.verb == "hover")
                 for (const std::string& a : c.args)
                     (void)number(c, a);
             if (c.verb == "frames" || c.verb == "until-step" || c.verb == "steps-per-frame" ||
@@ -208,6 +210,14 @@ bool ScriptPlayer::start(Designer& d, const ScriptCommand& c) {
             m_dragFrame = 0;
             m_dragging = true;
             return false;
+        } else if (c.verb == "hover") {
+            // A drag of one position without the button: the pointer rests there.
+            m_from[0] = m_to[0] = number(c, a[0]);
+            m_from[1] = m_to[1] = number(c, a[1]);
+            m_dragFrames = 0;
+            m_dragFrame = 0;
+            m_dragging = true;
+            return false;
         } else if (c.verb == "key") {
             parseCombo(a[0], c.line, m_key, m_ctrl, m_shift);
             m_releaseKey = false;
@@ -237,19 +247,18 @@ bool ScriptPlayer::start(Designer& d, const ScriptCommand& c) {
 
 void ScriptPlayer::beforeFrame(Designer& d) {
     ImGuiIO& io = ImGui::GetIO();
-    // Release a key pressed on the last frame.
-    if (m_key >= 0 && m_releaseKey) {
+    // Release a key pressed on the last frame; this frame runs no command, so
+    // that the next press is a new one.
+    const bool released = m_key >= 0 && m_releaseKey;
+    if (released) {
         io.KeysDown[m_key] = false;
         io.KeyCtrl = io.KeyShift = false;
         m_key = -1;
-        return; // a frame with the key up, so that the next press is a new one
     }
     checkErrors(d);
-    if (m_failed)
-        return;
     if (m_untilStep >= 0 && d.document().steps() >= m_untilStep)
         m_untilStep = -1;
-    while (m_wait == 0 && m_untilStep < 0 && !m_dragging && m_key < 0 &&
+    while (!released && !m_failed && m_wait == 0 && m_untilStep < 0 && !m_dragging && m_key < 0 &&
            m_next < m_commands.size()) {
         if (!start(d, m_commands[m_next++]))
             break;
@@ -260,21 +269,28 @@ void ScriptPlayer::beforeFrame(Designer& d) {
         io.KeyShift = m_shift;
         m_releaseKey = true;
     }
+    // The pointer is the script's alone (a virtual X server's real pointer
+    // would sit over the canvas and hover there).
+    io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+    io.MouseDown[0] = false;
     if (m_dragging) {
         // Frame 0 moves there, 1 presses, then moves; the last frame releases.
-        const std::array<float, 4> r = d.canvasRect();
-        const CanvasView& v = d.canvasView();
-        const auto& live = d.document().live();
-        const double t = m_dragFrame <= 1
+        const double t = m_dragFrame <= 1 || m_dragFrames < 3
                              ? 0.0
                              : std::min(1.0, double(m_dragFrame - 1) / double(m_dragFrames - 2));
-        const double fx = m_from[0] + (m_to[0] - m_from[0]) * t;
-        const double fy = m_from[1] + (m_to[1] - m_from[1]) * t;
-        const auto screen = v.toScreen({fx * live.width, fy * live.height}, r[2], r[3]);
-        io.MousePos = ImVec2(r[0] + float(screen[0]), r[1] + float(screen[1]));
-        io.MouseDown[0] = m_dragFrame >= 1 && m_dragFrame < m_dragFrames;
+        m_pointer[0] = m_from[0] + (m_to[0] - m_from[0]) * t;
+        m_pointer[1] = m_from[1] + (m_to[1] - m_from[1]) * t;
+        m_pointerSet = true;
+        io.MouseDown[0] = m_dragFrames > 0 && m_dragFrame >= 1 && m_dragFrame < m_dragFrames;
         if (++m_dragFrame > m_dragFrames)
             m_dragging = false;
+    }
+    if (m_pointerSet) {
+        const std::array<float, 4> r = d.canvasRect();
+        const auto& live = d.document().live();
+        const auto screen = d.canvasView().toScreen(
+            {m_pointer[0] * live.width, m_pointer[1] * live.height}, r[2], r[3]);
+        io.MousePos = ImVec2(r[0] + float(screen[0]), r[1] + float(screen[1]));
     }
 }
 

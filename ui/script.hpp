@@ -21,6 +21,7 @@ class Designer;
 //   param NAME VALUE            set a parameter (one undo step, as a typed value)
 //   brush MODE [chemical NAME] [param NAME] [value V] [radius R] [falloff F]
 //   drag X0 Y0 X1 Y1 [FRAMES]   left-drag over the canvas, in canvas fractions (0..1)
+//   hover X Y                   rest the pointer there (outside 0..1: off the canvas)
 //   key COMBO                   e.g. space, ctrl+z, ctrl+shift+z, r, t, f
 //   save FILE | export FILE [BITS] | screenshot FILE
 //   expect-steps N              fail unless the run is at step N
@@ -63,6 +64,10 @@ private:
     bool m_dragging = false;
     double m_from[2] = {0, 0}, m_to[2] = {0, 0};
     int m_dragFrame = 0, m_dragFrames = 0;
+    // The script owns the pointer: where it rests (canvas fractions) once a
+    // drag or hover put it somewhere; off the window before that.
+    bool m_pointerSet = false;
+    double m_pointer[2] = {0, 0};
     // A key combination held for one frame, released on the next.
     int m_key = -1;
     bool m_ctrl = false, m_shift = false, m_releaseKey = false;
