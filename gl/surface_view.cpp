@@ -1,5 +1,7 @@
 #include "gl/surface_view.hpp"
 
+#include <limits>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -94,6 +96,42 @@ Camera cameraFor(const BoundingSphere& bounds, const ViewOptions& view) {
 }
 
 } // namespace
+
+std::optional<Eigen::Vector3f> pickSurface(const TriangleMesh& mesh, const BoundingSphere& bounds,
+                                           const ViewOptions& view, double x, double y) {
+    const Eigen::Matrix4f inverse = cameraFor(bounds, view).viewProjection.inverse();
+    const float nx = float(2.0 * x / view.width - 1.0), ny = float(1.0 - 2.0 * y / view.height);
+    auto unproject = [&](float z) {
+        const Eigen::Vector4f p = inverse * Eigen::Vector4f(nx, ny, z, 1.0f);
+        return Eigen::Vector3f(p.head<3>() / p.w());
+    };
+    const Eigen::Vector3f origin = unproject(-1.0f);
+    const Eigen::Vector3f direction = (unproject(1.0f) - origin).normalized();
+    float nearest = std::numeric_limits<float>::max();
+    for (const auto& t : mesh.triangles) {
+        // Moller-Trumbore, both faces (open surfaces are seen from either side).
+        const Eigen::Vector3f& a = mesh.positions[t[0]];
+        const Eigen::Vector3f e1 = mesh.positions[t[1]] - a, e2 = mesh.positions[t[2]] - a;
+        const Eigen::Vector3f p = direction.cross(e2);
+        const float det = e1.dot(p);
+        if (std::abs(det) < 1e-12f)
+            continue;
+        const Eigen::Vector3f s = origin - a;
+        const float u = s.dot(p) / det;
+        if (u < 0.0f || u > 1.0f)
+            continue;
+        const Eigen::Vector3f q = s.cross(e1);
+        const float v = direction.dot(q) / det;
+        if (v < 0.0f || u + v > 1.0f)
+            continue;
+        const float distance = e2.dot(q) / det;
+        if (distance > 0.0f && distance < nearest)
+            nearest = distance;
+    }
+    if (nearest == std::numeric_limits<float>::max())
+        return std::nullopt;
+    return Eigen::Vector3f(origin + direction * nearest);
+}
 
 SurfaceRenderer::SurfaceRenderer(const TexturedMesh& mesh)
     : m_baseColour(uploadImage(mesh.baseColour, "base colour texture")),

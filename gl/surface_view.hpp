@@ -1,5 +1,7 @@
 #pragma once
 
+#include <optional>
+
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -65,6 +67,14 @@ private:
     std::size_t m_indexCount = 0;
     BoundingSphere m_bounds;
 };
+
+// The point of `mesh` seen at pixel (x, y) of `view` (continuous pixel
+// coordinates, row 0 at the top) by the camera SurfaceRenderer uses for a
+// model in `bounds`: the nearest triangle the ray through the pixel hits;
+// none when it misses. Brute force over the triangles (interactive picking:
+// one ray per mouse event).
+std::optional<Eigen::Vector3f> pickSurface(const TriangleMesh& mesh, const BoundingSphere& bounds,
+                                           const ViewOptions& view, double x, double y);
 
 // One view of a tiled surface: texturedSurface, then SurfaceRenderer.
 SurfaceImage renderSurface(const SurfaceTiles& tiles, const std::vector<float>& height,

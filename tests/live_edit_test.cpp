@@ -8,9 +8,11 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/errors.hpp"
+#include "core/domain/atlas.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/session_run.hpp"
 #include "core/sim/stroke_brush.hpp"
+#include "core/surface/surface_setup.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;
@@ -318,4 +320,90 @@ TEST(LiveEdit, AStrokeDoesNotBuildUpOnItself) {
     again.stroke = piece;
     run.applyEdit(again);
     EXPECT_NEAR(run.state().at(1, 24, 23) - v0, 0.2f, 1e-6f);
+}
+
+TEST(LiveEdit, SurfaceStrokesLandOnTheMeshAndReplay) {
+    // A session on the sample sphere (radius 1) with few small tiles.
+    Session s = loadPreset("turk_small_spots");
+    s.length = 60;
+    s.surface.mesh = "sample:sphere";
+    s.surface.tiles = 120;
+    s.surface.tileSize = 4;
+    s.steps = 30;
+    const SurfaceSetup setup = setUpSurface(s);
+    ASSERT_TRUE(s.atlasPositions);
+    const Session& run0 = s;
+    SessionRun run(run0, cpu(), 0);
+    run.advance(10 * run.substeps());
+    const State before = run.state();
+    LiveEdit e;
+    e.stroke = StrokeSpec{};
+    e.stroke->mode = BrushMode::Add;
+    e.stroke->chemical = "b";
+    e.stroke->value = 2.0f;
+    e.stroke->surface = true;
+    e.stroke->surfacePoints = {{0.0, 0.0, 1.0}, {0.0, 0.6, 0.8}}; // an arc's chord near +z
+    e.stroke->radius = 0.15;
+    e.stroke->falloff = 0;
+    run.applyEdit(e);
+    const State after = run.state();
+    // Exactly the texels within 0.15 of the chord changed (b += 2), across tile seams.
+    const int b = s.reactionModel().chemicalIndex("b");
+    const Atlas& atlas = *setup.tiles.atlas;
+    int changed = 0, tilesTouched = 0;
+    std::vector<char> touched(std::size_t(atlas.tileCount()), 0);
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i) {
+        const int x = int(i % std::uint32_t(atlas.width())),
+                  y = int(i / std::uint32_t(atlas.width()));
+        const float d = after.at(b, x, y) - before.at(b, x, y);
+        if (!atlas.used(i)) {
+            EXPECT_EQ(d, 0.0f);
+            continue;
+        }
+        const Eigen::Vector3f p = setup.tiles.texelPositions[i];
+        // Distance to the chord from (0,0,1) to (0,0.6,0.8).
+        const Eigen::Vector3f a(0, 0, 1), ab = Eigen::Vector3f(0, 0.6f, 0.8f) - a;
+        const float t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0f, 1.0f);
+        const float dist = (p - (a + t * ab)).norm();
+        if (dist < 0.149f) {
+            EXPECT_NEAR(d, 2.0f, 1e-5f) << "texel " << i << " at " << dist;
+            ++changed;
+            if (!touched[std::size_t(atlas.tileOf(i))]++)
+                ++tilesTouched;
+        } else if (dist > 0.151f) {
+            EXPECT_EQ(d, 0.0f) << "texel " << i << " at " << dist;
+        }
+    }
+    EXPECT_GT(changed, 20);
+    EXPECT_GT(tilesTouched, 3); // the stroke crosses tile seams
+    run.advance(5 * run.substeps());
+    // Saved and replayed (the JSON, then the mesh set up again): the same state.
+    Session saved = run.completed();
+    const nlohmann::json j = sessionToJson(saved);
+    EXPECT_EQ(j["edits"][0]["stroke"]["space"], "surface");
+    Session again = sessionFromJson(j, "surface-edits.json");
+    validateSession(again, "surface-edits.json");
+    (void)setUpSurface(again);
+    const RunResult replay = runSession(again, cpu(), {});
+    EXPECT_EQ(test::maxAbsDifference(replay.state, run.state()), 0.0f);
+}
+
+TEST(LiveEdit, StrokesMustMatchTheSessionsSpace) {
+    Session flat = smallCoral();
+    LiveEdit e;
+    e.step = 1;
+    e.stroke = dab(0.5, 0.5);
+    e.stroke->surface = true;
+    e.stroke->points.clear();
+    e.stroke->surfacePoints = {{0, 0, 1}};
+    flat.edits = {e};
+    EXPECT_NE(
+        refusal(sessionToJson(flat)).find("a stroke on a surface in a session without a mesh"),
+        std::string::npos);
+    Session onMesh = smallCoral();
+    onMesh.surface.mesh = "sample:sphere";
+    e.stroke = dab(0.5, 0.5);
+    onMesh.edits = {e};
+    EXPECT_NE(refusal(sessionToJson(onMesh)).find("a stroke on the canvas in a session on a mesh"),
+              std::string::npos);
 }

@@ -13,6 +13,7 @@
 #include "gl/backend.hpp"
 #include "gl/display.hpp"
 #include "gl/glfw_context.hpp"
+#include "gl/surface_view.hpp"
 #include "ui/canvas_view.hpp"
 #include "ui/designer.hpp"
 #include "ui/document.hpp"
@@ -90,6 +91,8 @@ public:
     BrushSettings& brush() { return m_brush; }
     // The canvas' last screen rectangle and view (the script aims with them).
     std::array<float, 4> canvasRect() const { return m_canvasRect; }
+    std::array<float, 4> modelRect() const { return m_modelRect; } // the 3D view's
+    bool hasModel() const { return m_surface != nullptr; }
     const CanvasView& canvasView() const { return m_view; }
     // Shows an error in the status line and on stderr; the script fails on it.
     void reportError(const std::string& message);
@@ -112,6 +115,8 @@ private:
     void drawCanvas(float x, float y, float w, float h);
     void drawModelView(float x, float y, float w, float h);
     void renderModelView(int width, int height);
+    // The brush settings as a stroke (chemical and parameter names resolved).
+    StrokeSpec strokeFromBrush() const;
     // Opens a session that grows on a mesh: its tiles are built on a worker
     // thread (a progress bar; cancel abandons it), then it opens.
     void openSurfaceSession(Session session, const std::string& path, long long replayTo);
@@ -137,7 +142,7 @@ private:
     CanvasView m_view;
     bool m_viewFramed = false;
     bool m_nearest = true, m_tiled = false;
-    std::array<float, 4> m_canvasRect{};
+    std::array<float, 4> m_canvasRect{}, m_modelRect{};
     BrushSettings m_brush;
     bool m_playing = true, m_quit = false;
     int m_stepsPerFrame = 0; // 0: automatic
@@ -165,6 +170,8 @@ private:
     std::shared_ptr<const SurfaceSetup> m_surface; // the open session's mesh and tiles, or null
     Orbit m_orbit;
     gl::Texture2D m_modelImage;
+    gl::ViewOptions m_modelView; // the last 3D picture's camera (picking aims with it)
+    BoundingSphere m_modelBounds;
     bool m_modelStale = true;
     std::chrono::steady_clock::time_point m_lastModelRender;
     int m_viewMode = 0; // 0: canvas and model side by side, 1: canvas, 2: model

@@ -61,29 +61,17 @@ void Designer::drawCanvas(float x, float y, float w, float h) {
 
     // Strokes: the left button paints through the engine's brush writes.
     const std::array<double, 2> fraction = {cell[0] / cw, cell[1] / ch};
-    // Painting on a surface goes through the 3D view (not built yet): the
-    // atlas canvas is for looking.
+    // On a mesh the brush works in the 3D view (across tile seams): the atlas
+    // canvas is for looking.
     if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !m_scrub &&
         !m_surface) {
-        const ReactionModel& model = m_doc.live().reactionModel();
-        StrokeSpec stroke;
-        stroke.mode = m_brush.mode;
-        if (writesChemical(m_brush.mode)) {
-            const int c = m_brush.chemical >= 0 && m_brush.chemical < int(model.chemicals().size())
-                              ? m_brush.chemical
-                              : model.displayChemical();
-            stroke.chemical = model.chemicals()[std::size_t(c)].name;
-        }
-        stroke.param = m_brush.mode == BrushMode::Paint ? m_brush.param : "";
-        stroke.value = m_brush.value;
-        stroke.seed = m_brush.seed++;
-        stroke.radius = m_brush.radius;
-        stroke.falloff = m_brush.falloff;
+        const StrokeSpec stroke = strokeFromBrush();
+        ++m_brush.seed;
         guarded("brush", [&] {
             m_doc.beginStroke(stroke);
             m_doc.extendStroke({fraction});
         });
-    } else if (m_doc.stroking() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+    } else if (m_doc.stroking() && !m_surface && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
         if (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)
             guarded("brush", [&] { m_doc.extendStroke({fraction}); });
     }
@@ -172,6 +160,24 @@ void Designer::drawCanvas(float x, float y, float w, float h) {
                            m_doc.history()[*m_scrub].step);
     }
     ImGui::End();
+}
+
+StrokeSpec Designer::strokeFromBrush() const {
+    const ReactionModel& model = m_doc.live().reactionModel();
+    StrokeSpec stroke;
+    stroke.mode = m_brush.mode;
+    if (writesChemical(m_brush.mode)) {
+        const int c = m_brush.chemical >= 0 && m_brush.chemical < int(model.chemicals().size())
+                          ? m_brush.chemical
+                          : model.displayChemical();
+        stroke.chemical = model.chemicals()[std::size_t(c)].name;
+    }
+    stroke.param = m_brush.mode == BrushMode::Paint ? m_brush.param : "";
+    stroke.value = m_brush.value;
+    stroke.seed = m_brush.seed;
+    stroke.radius = m_brush.radius;
+    stroke.falloff = m_brush.falloff;
+    return stroke;
 }
 
 void Designer::drawSidePanel(float x, float y, float w, float h) {

@@ -1,6 +1,8 @@
 // The designer's 3D view of a session that grows on a mesh: the pattern on
 // the model with the colour map and bump mapping (the renderer of `render
-// --mesh`), an orbit camera (drag to orbit, wheel to zoom, F to frame).
+// --mesh`), an orbit camera (right drag orbits, the wheel zooms, F frames),
+// and the brush on the surface (left drag: the stroke goes through the atlas
+// across tile seams, recorded as a surface stroke of the session).
 
 #include <algorithm>
 #include <cmath>
@@ -33,27 +35,57 @@ void Designer::drawModelView(float x, float y, float w, float h) {
     ImGui::PopStyleVar();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const ImVec2 size = ImGui::GetContentRegionAvail();
+    m_modelRect = {origin.x, origin.y, size.x, size.y};
     if (!m_surface || !m_doc.isOpen() || size.x < 16 || size.y < 16) {
         ImGui::End();
         return;
     }
     ImGui::InvisibleButton("model", size,
-                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                               ImGuiButtonFlags_MouseButtonMiddle);
     const ImGuiIO& io = ImGui::GetIO();
-    if (ImGui::IsItemActive() && (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)) {
+    const bool hovered = ImGui::IsItemHovered();
+    // Right or middle drag orbits; the left button paints on the model.
+    if (ImGui::IsItemActive() && !ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
+        (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)) {
         m_orbit.azimuth = std::fmod(m_orbit.azimuth - io.MouseDelta.x * 0.4, 360.0);
         m_orbit.elevation = std::clamp(m_orbit.elevation + io.MouseDelta.y * 0.4, -89.0, 89.0);
         m_modelStale = true;
     }
-    if (ImGui::IsItemHovered() && io.MouseWheel != 0) {
+    if (hovered && io.MouseWheel != 0) {
         const double current = m_orbit.distance > 0 ? m_orbit.distance : 3.0;
         m_orbit.distance = std::clamp(current * std::pow(0.9, io.MouseWheel), 1.05, 50.0);
         m_modelStale = true;
     }
-    if (ImGui::IsItemHovered() && !io.WantTextInput && ImGui::IsKeyPressed('F', false)) {
+    if (hovered && !io.WantTextInput && ImGui::IsKeyPressed('F', false)) {
         m_orbit = Orbit{};
         m_modelStale = true;
     }
+    // The point under the cursor, in the last picture's camera (its pixels
+    // are the view's: the picture fills the view).
+    std::optional<Eigen::Vector3f> hit;
+    if ((hovered || m_doc.stroking()) && m_modelImage.width() > 0)
+        hit = gl::pickSurface(m_surface->mesh.mesh, m_modelBounds, m_modelView,
+                              io.MousePos.x - origin.x, io.MousePos.y - origin.y);
+    const double worldRadius = m_brush.radius * 2.0 * m_modelBounds.radius;
+    if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && hit &&
+        !m_scrub) {
+        StrokeSpec stroke = strokeFromBrush();
+        ++m_brush.seed;
+        stroke.surface = true;
+        stroke.radius = worldRadius;
+        guarded("brush", [&] {
+            m_doc.beginStroke(stroke);
+            m_doc.extendSurfaceStroke({{hit->x(), hit->y(), hit->z()}});
+        });
+        m_modelStale = true;
+    } else if (m_doc.stroking() && ImGui::IsMouseDown(ImGuiMouseButton_Left) && hit &&
+               (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)) {
+        guarded("brush", [&] { m_doc.extendSurfaceStroke({{hit->x(), hit->y(), hit->z()}}); });
+        m_modelStale = true;
+    }
+    if (m_doc.stroking() && !ImGui::IsMouseDown(ImGuiMouseButton_Left))
+        guarded("brush", [&] { m_doc.endStroke(); });
     const int width = int(size.x), height = int(size.y);
     const bool resized = m_modelImage.width() != width || m_modelImage.height() != height;
     const bool due = m_playing && seconds(Clock::now() - m_lastModelRender) > kModelRefreshSeconds;
@@ -63,8 +95,20 @@ void Designer::drawModelView(float x, float y, float w, float h) {
         ImGui::GetWindowDrawList()->AddImage(
             reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(m_modelImage.id())), origin,
             ImVec2(origin.x + size.x, origin.y + size.y));
+    // The brush outline: a circle of the brush's radius at the point's depth
+    // (its size on screen from the camera's field of view and distance).
+    if (hit) {
+        const double distance =
+            (m_modelView.distance > 0 ? m_modelView.distance : 3.0) * m_modelBounds.radius;
+        const double pixelsPerUnit =
+            size.y / (2.0 * distance * std::tan(m_modelView.fieldOfView * M_PI / 360.0));
+        const float r = float(worldRadius * pixelsPerUnit);
+        ImDrawList* draw = ImGui::GetWindowDrawList();
+        draw->AddCircle(io.MousePos, r, IM_COL32(0, 0, 0, 160), 48, 3.0f);
+        draw->AddCircle(io.MousePos, r, IM_COL32(255, 255, 255, 200), 48, 1.5f);
+    }
     ImGui::SetCursorScreenPos(ImVec2(origin.x + 8, origin.y + 6));
-    ImGui::TextDisabled("%s  |  drag to orbit, wheel to zoom, F to frame",
+    ImGui::TextDisabled("%s  |  left drag paints, right drag orbits, wheel zooms, F frames",
                         m_doc.session().surface.mesh.c_str());
     ImGui::End();
 }
@@ -84,6 +128,8 @@ void Designer::renderModelView(int width, int height) {
     view.supersample = 1; // live: the exported screenshot supersamples
     view.background = {0.09f, 0.09f, 0.1f, 1.0f};
     const gl::SurfaceImage image = renderer.render(view);
+    m_modelView = view;
+    m_modelBounds = renderer.bounds();
     if (m_modelImage.width() != width || m_modelImage.height() != height)
         m_modelImage = gl::Texture2D(width, height, GL_RGBA8);
     std::vector<float> rgba(image.rgba.size());

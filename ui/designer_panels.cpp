@@ -348,11 +348,6 @@ void Designer::drawParamsSection() {
 
 void Designer::drawBrushSection() {
     const ReactionModel& model = m_doc.live().reactionModel();
-    if (m_surface) {
-        ImGui::TextWrapped("Painting on a model is not available yet: the brushes work on flat "
-                           "canvases. Sliders, the history and exports work here.");
-        return;
-    }
     const char* modes[] = {"add", "remove", "set", "hold", "release", "distort", "paint"};
     int mode = int(m_brush.mode);
     if (ImGui::Combo("mode", &mode, modes, IM_ARRAYSIZE(modes)))
@@ -386,7 +381,8 @@ void Designer::drawBrushSection() {
         p = model.param(m_brush.param);
         ImGui::SliderFloat("value", &m_brush.value, p->min, p->max, "%.5g");
     }
-    ImGui::SliderFloat("radius", &m_brush.radius, 0.002f, 0.5f, "%.3f of width",
+    ImGui::SliderFloat("radius", &m_brush.radius, 0.002f, 0.5f,
+                       m_surface ? "%.3f of the model" : "%.3f of width",
                        ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("falloff", &m_brush.falloff, 0.0f, 1.0f, "%.2f");
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));

@@ -157,7 +157,7 @@ void Document::beginStroke(const StrokeSpec& brush) {
 }
 
 void Document::extendStroke(const std::vector<std::array<double, 2>>& points) {
-    if (!m_stroke || points.empty())
+    if (!m_stroke || points.empty() || m_stroke->brush.surface)
         return;
     StrokeSpec piece = m_stroke->brush;
     piece.points.clear();
@@ -165,6 +165,25 @@ void Document::extendStroke(const std::vector<std::array<double, 2>>& points) {
     if (m_stroke->last)
         piece.points.push_back(*m_stroke->last);
     piece.points.insert(piece.points.end(), points.begin(), points.end());
+    applyPiece(std::move(piece));
+    m_stroke->last = points.back();
+}
+
+void Document::extendSurfaceStroke(const std::vector<std::array<double, 3>>& points) {
+    if (!m_stroke || points.empty() || !m_stroke->brush.surface)
+        return;
+    StrokeSpec piece = m_stroke->brush;
+    piece.surface = true;
+    piece.points.clear();
+    piece.surfacePoints.clear();
+    if (m_stroke->lastOnSurface)
+        piece.surfacePoints.push_back(*m_stroke->lastOnSurface);
+    piece.surfacePoints.insert(piece.surfacePoints.end(), points.begin(), points.end());
+    applyPiece(std::move(piece));
+    m_stroke->lastOnSurface = points.back();
+}
+
+void Document::applyPiece(StrokeSpec piece) {
     // Randomise: each piece draws its own noise.
     piece.seed = m_stroke->brush.seed + m_stroke->pieces.size();
     piece.continues = !m_stroke->pieces.empty();
@@ -172,7 +191,6 @@ void Document::extendStroke(const std::vector<std::array<double, 2>>& points) {
     e.stroke = piece;
     m_run->applyEdit(std::move(e));
     m_stroke->pieces.push_back(std::move(piece));
-    m_stroke->last = points.back();
     m_dirty = true;
 }
 

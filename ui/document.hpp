@@ -70,6 +70,9 @@ public:
     // covers), end. One undo step for the stroke.
     void beginStroke(const StrokeSpec& brush);
     void extendStroke(const std::vector<std::array<double, 2>>& points);
+    // The same on a session's mesh: points on the surface, for a stroke begun
+    // with a surface brush (each kind of stroke takes only its own points).
+    void extendSurfaceStroke(const std::vector<std::array<double, 3>>& points);
     void endStroke();
     bool stroking() const { return m_stroke.has_value(); }
 
@@ -133,7 +136,9 @@ private:
         RunCheckpoint before;
         std::vector<StrokeSpec> pieces; // as applied: what redo applies again
         std::optional<std::array<double, 2>> last;
+        std::optional<std::array<double, 3>> lastOnSurface;
     };
+    void applyPiece(StrokeSpec piece);
     std::optional<OpenStroke> m_stroke;
 
     std::deque<Snapshot> m_history;

@@ -29,6 +29,7 @@ const std::map<std::string, std::pair<int, int>> kVerbs = {
     {"brush", {1, 11}},
     {"drag", {4, 5}},
     {"hover", {2, 2}},
+    {"drag-model", {4, 5}},
     {"key", {1, 1}},
     {"save", {1, 1}},
     {"export", {1, 2}},
@@ -108,7 +109,7 @@ std::vector<ScriptCommand> parseScript(const std::string& text, const std::strin
                                  std::to_string(verb->second.first) + ".." +
                                  std::to_string(verb->second.second) + " arguments, got " +
                                  std::to_string(count));
-            if (c.verb == "drag" || c.verb == "hover")
+            if (c.verb == "drag" || c.verb == "hover" || c.verb == "drag-model")
                 for (const std::string& a : c.args)
                     (void)number(c, a);
             if (c.verb == "frames" || c.verb == "until-step" || c.verb == "steps-per-frame" ||
@@ -201,7 +202,10 @@ bool ScriptPlayer::start(Designer& d, const ScriptCommand& c) {
                     throw InputError("brush setting '" + key +
                                      "' (accepted: chemical, param, value, radius, falloff)");
             }
-        } else if (c.verb == "drag") {
+        } else if (c.verb == "drag" || c.verb == "drag-model") {
+            if (c.verb == "drag-model" && !d.hasModel())
+                throw InputError("drag-model needs a session on a mesh (a 3D view)");
+            m_onModel = c.verb == "drag-model";
             m_from[0] = number(c, a[0]);
             m_from[1] = number(c, a[1]);
             m_to[0] = number(c, a[2]);
@@ -211,6 +215,7 @@ bool ScriptPlayer::start(Designer& d, const ScriptCommand& c) {
             m_dragging = true;
             return false;
         } else if (c.verb == "hover") {
+            m_onModel = false;
             // A drag of one position without the button: the pointer rests there.
             m_from[0] = m_to[0] = number(c, a[0]);
             m_from[1] = m_to[1] = number(c, a[1]);
@@ -285,7 +290,10 @@ void ScriptPlayer::beforeFrame(Designer& d) {
         if (++m_dragFrame > m_dragFrames)
             m_dragging = false;
     }
-    if (m_pointerSet) {
+    if (m_pointerSet && m_onModel) {
+        const std::array<float, 4> r = d.modelRect();
+        io.MousePos = ImVec2(r[0] + float(m_pointer[0]) * r[2], r[1] + float(m_pointer[1]) * r[3]);
+    } else if (m_pointerSet) {
         const std::array<float, 4> r = d.canvasRect();
         const auto& live = d.document().live();
         const auto screen = d.canvasView().toScreen(

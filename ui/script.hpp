@@ -22,6 +22,7 @@ class Designer;
 //   brush MODE [chemical NAME] [param NAME] [value V] [radius R] [falloff F]
 //   drag X0 Y0 X1 Y1 [FRAMES]   left-drag over the canvas, in canvas fractions (0..1)
 //   hover X Y                   rest the pointer there (outside 0..1: off the canvas)
+//   drag-model X0 Y0 X1 Y1 [FRAMES]  left-drag over the 3D view, in fractions of it
 //   key COMBO                   e.g. space, ctrl+z, ctrl+shift+z, r, t, f
 //   save FILE | export FILE [BITS] | screenshot FILE
 //   expect-steps N              fail unless the run is at step N
@@ -67,6 +68,7 @@ private:
     // The script owns the pointer: where it rests (canvas fractions) once a
     // drag or hover put it somewhere; off the window before that.
     bool m_pointerSet = false;
+    bool m_onModel = false; // the pointer's fractions are of the 3D view, not the canvas
     double m_pointer[2] = {0, 0};
     // A key combination held for one frame, released on the next.
     int m_key = -1;

@@ -1,6 +1,7 @@
 #include "core/session/live_edit.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -59,15 +60,14 @@ const ParamSpec* findParam(const std::vector<const ReactionModel*>& models,
 StrokeSpec strokeFromJson(const FieldReader& edit, const json& block,
                           const std::vector<const ReactionModel*>& models) {
     FieldReader reader(block, edit.source(), edit.path("stroke"));
-    reader.rejectUnknown(
-        {"mode", "chemical", "param", "value", "seed", "points", "radius", "falloff", "continues"});
+    reader.rejectUnknown({"mode", "chemical", "param", "value", "seed", "points", "radius",
+                          "falloff", "continues", "space"});
     StrokeSpec s;
     if (!reader.find("mode"))
         reader.failField("mode", "is missing (accepted: " + brushModeNames() + ")");
     s.mode = reader.choice("mode", s.mode, parseBrushMode, brushModeNames());
     s.value = float(reader.number("value", 0.0, -kMaxBrushValue, kMaxBrushValue));
     s.seed = std::uint64_t(reader.integer("seed", 0, 0, kMaxSeed));
-    s.radius = reader.number("radius", s.radius, 1e-6, 1.0);
     s.falloff = reader.number("falloff", s.falloff, 0.0, 1.0);
     s.continues = reader.boolean("continues", false);
     if (writesChemical(s.mode)) {
@@ -97,20 +97,34 @@ StrokeSpec strokeFromJson(const FieldReader& edit, const json& block,
     } else if (reader.find("param")) {
         reader.failField("param", "is only used by mode 'paint'");
     }
+    const std::string space = reader.string("space", "canvas");
+    if (space != "canvas" && space != "surface")
+        reader.failField("space", "is '" + space + "', accepted: canvas, surface");
+    s.surface = space == "surface";
     const json* points = reader.find("points");
     const std::string expected =
-        "must be a non-empty array of [x, y] canvas fractions (0..1; -1..2 wraps on periodic "
-        "edges)";
+        s.surface ? "must be a non-empty array of [x, y, z] points on the mesh (its coordinates)"
+                  : "must be a non-empty array of [x, y] canvas fractions (0..1; -1..2 wraps on "
+                    "periodic edges)";
     if (!points || !points->is_array() || points->empty() || points->size() > kMaxStrokePoints)
         reader.failField("points", expected);
+    const std::size_t dims = s.surface ? 3 : 2;
     for (const json& p : *points) {
-        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+        bool ok = p.is_array() && p.size() == dims;
+        for (std::size_t k = 0; ok && k < dims; ++k) {
+            ok = p[k].is_number();
+            const double v = ok ? p[k].get<double>() : 0.0;
+            ok = ok && (s.surface ? std::abs(v) <= kMaxLength : v >= -1.0 && v <= 2.0);
+        }
+        if (!ok)
             reader.failField("points", expected + ", got " + p.dump());
-        const double x = p[0].get<double>(), y = p[1].get<double>();
-        if (!(x >= -1.0 && x <= 2.0 && y >= -1.0 && y <= 2.0))
-            reader.failField("points", expected + ", got " + p.dump());
-        s.points.push_back({x, y});
+        if (s.surface)
+            s.surfacePoints.push_back({p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
+        else
+            s.points.push_back({p[0].get<double>(), p[1].get<double>()});
     }
+    // On a surface the radius is in the mesh's units.
+    s.radius = reader.number("radius", s.radius, 1e-9, s.surface ? kMaxLength : 1.0);
     return s;
 }
 
@@ -130,8 +144,14 @@ json strokeToJson(const StrokeSpec& s) {
     if (s.continues)
         j["continues"] = true;
     j["points"] = json::array();
-    for (const auto& p : s.points)
-        j["points"].push_back({p[0], p[1]});
+    if (s.surface) {
+        j["space"] = "surface";
+        for (const auto& p : s.surfacePoints)
+            j["points"].push_back({p[0], p[1], p[2]});
+    } else {
+        for (const auto& p : s.points)
+            j["points"].push_back({p[0], p[1]});
+    }
     return j;
 }
 
@@ -140,7 +160,7 @@ json strokeToJson(const StrokeSpec& s) {
 bool StrokeSpec::operator==(const StrokeSpec& o) const {
     return mode == o.mode && chemical == o.chemical && param == o.param && value == o.value &&
            seed == o.seed && points == o.points && radius == o.radius && falloff == o.falloff &&
-           continues == o.continues;
+           continues == o.continues && surface == o.surface && surfacePoints == o.surfacePoints;
 }
 
 bool LiveEdit::operator==(const LiveEdit& o) const {
@@ -209,11 +229,18 @@ void checkLiveEdits(const Session& s, long long totalSteps, const std::string& s
         throw InputError(source + ": edit at step " + std::to_string(s.edits.back().step) +
                          " comes after the session's last step (" + std::to_string(totalSteps) +
                          "): edits apply before a step the session runs, or at its end");
-    const bool strokes = std::any_of(s.edits.begin(), s.edits.end(),
-                                     [](const LiveEdit& e) { return e.stroke.has_value(); });
-    if (strokes && s.surface.active())
-        throw InputError(source + ": brush strokes in \"edits\" address the flat canvas; a "
-                                  "session on a surface (\"surface\") cannot hold them yet");
+    for (const LiveEdit& e : s.edits) {
+        if (!e.stroke)
+            continue;
+        if (!e.stroke->surface && s.surface.active())
+            throw InputError(source + ": edit at step " + std::to_string(e.step) +
+                             ": a stroke on the canvas in a session on a mesh (\"surface\"); "
+                             "its strokes give \"space\": \"surface\" and points on the mesh");
+        if (e.stroke->surface && !s.surface.active())
+            throw InputError(source + ": edit at step " + std::to_string(e.step) +
+                             ": a stroke on a surface in a session without a mesh (no "
+                             "\"surface\" block)");
+    }
     if (!s.edits.empty() && s.tiles.active())
         throw InputError(source + ": \"edits\" do not combine with \"tiles\" (a batched sweep "
                                   "sets its parameters per tile)");

@@ -31,6 +31,11 @@ struct StrokeSpec {
     // 0..1 over the canvas (periodic edges wrap points outside it). One point
     // is a dab; consecutive points are joined by a swept disc.
     std::vector<std::array<double, 2>> points;
+    // A stroke on a session's surface (a mesh): the path in the mesh's own
+    // coordinates and the radius in its units; the texels within the radius
+    // of the path (straight-line distance from their centres) are the cells.
+    bool surface = false;
+    std::vector<std::array<double, 3>> surfacePoints;
     double radius = 0.02; // fraction of the canvas width
     double falloff = 0.5; // outer fraction of the radius that ramps down to 0
     // The stroke goes on from the previous stroke edit (a drag recorded piece

@@ -116,6 +116,10 @@ struct Session {
     // Per-texel diffusion weights on that atlas (the surface's metric; null:
     // one unit per texel), set by useAtlas; not serialised either.
     std::shared_ptr<const AtlasWeights> atlasWeights;
+    // Per atlas cell, the texel centre on the mesh (its coordinates), where
+    // strokes on the surface land; set with the atlas from a mesh, not
+    // serialised (null: none).
+    std::shared_ptr<const std::vector<std::array<float, 3>>> atlasPositions;
 
     // The grid, the tiled grid of a batched sweep, or the atlas.
     Domain domain() const;

@@ -214,7 +214,8 @@ void SessionRun::applyNow(const LiveEdit& edit) {
 
 Brush SessionRun::strokeWrite(const StrokeSpec& stroke) {
     const Session& part = segmentSession();
-    Brush brush = strokeBrush(stroke, part.reactionModel(), part.domain());
+    Brush brush =
+        strokeBrush(stroke, part.reactionModel(), part.domain(), part.atlasPositions.get());
     if (writesChemical(stroke.mode)) {
         if (!stroke.continues)
             m_strokeCoverage.clear();
@@ -230,7 +231,8 @@ void SessionRun::applyEdit(LiveEdit edit) {
     // Checked before anything changes, so a refused edit leaves the run as it was.
     if (edit.stroke) {
         const Session& part = segmentSession();
-        (void)strokeBrush(*edit.stroke, part.reactionModel(), part.domain());
+        (void)strokeBrush(*edit.stroke, part.reactionModel(), part.domain(),
+                          part.atlasPositions.get());
     }
     if (edit.dt && (!(*edit.dt > 0) || !std::isfinite(*edit.dt)))
         throw InputError("dt " + std::to_string(*edit.dt) + " is not a positive time step");

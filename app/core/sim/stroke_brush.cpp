@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 #include "core/base/errors.hpp"
+#include "core/domain/atlas.hpp"
 
 namespace morphogen {
 
@@ -27,7 +29,45 @@ double segmentDistance(double px, double py, double ax, double ay, double bx, do
 
 } // namespace
 
-BrushRegion strokeRegion(const StrokeSpec& stroke, const Domain& domain) {
+BrushRegion surfaceStrokeRegion(const StrokeSpec& stroke, const Domain& domain,
+                                const AtlasPositions& positions) {
+    const double r = stroke.radius, inner = r * (1.0 - stroke.falloff);
+    const std::vector<std::array<double, 3>>& path = stroke.surfacePoints;
+    std::vector<BrushRegion::Cell> cells;
+    const Atlas* atlas = domain.atlasMap();
+    for (std::uint32_t i = 0; i < positions.size() && i < std::uint32_t(domain.cellCount()); ++i) {
+        if (atlas && !atlas->used(i))
+            continue;
+        const std::array<float, 3>& p = positions[i];
+        double d = std::numeric_limits<double>::max();
+        for (std::size_t k = 0; k < path.size(); ++k) {
+            const std::array<double, 3>& a = path[k];
+            const std::array<double, 3>& b = path[std::min(k + 1, path.size() - 1)];
+            const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+            const double q[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+            const double len2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+            double t = len2 > 0 ? (q[0] * e[0] + q[1] * e[1] + q[2] * e[2]) / len2 : 0.0;
+            t = std::clamp(t, 0.0, 1.0);
+            const double x = q[0] - t * e[0], y = q[1] - t * e[1], z = q[2] - t * e[2];
+            d = std::min(d, std::sqrt(x * x + y * y + z * z));
+        }
+        if (d > r)
+            continue;
+        const float weight = d <= inner ? 1.0f : float((r - d) / (r - inner));
+        if (weight > 0.0f)
+            cells.push_back({i, std::min(weight, 1.0f)});
+    }
+    return BrushRegion::fromCells(domain, std::move(cells));
+}
+
+BrushRegion strokeRegion(const StrokeSpec& stroke, const Domain& domain,
+                         const AtlasPositions* positions) {
+    if (stroke.surface) {
+        if (!positions || positions->size() != std::size_t(domain.cellCount()))
+            throw InputError("a stroke on a surface needs the session's mesh (its texel "
+                             "positions): this run has none");
+        return surfaceStrokeRegion(stroke, domain, *positions);
+    }
     const int w = domain.width(), h = domain.height();
     // A stroke wider than the canvas covers it; bounding it keeps the loops finite.
     const double r = std::min(stroke.radius * w, double(std::max(w, h)) * 2.0);
@@ -87,7 +127,8 @@ BrushRegion uncoveredPart(const BrushRegion& piece, StrokeCoverage& coverage,
     return BrushRegion::fromCells(domain, std::move(cells));
 }
 
-Brush strokeBrush(const StrokeSpec& stroke, const ReactionModel& model, const Domain& domain) {
+Brush strokeBrush(const StrokeSpec& stroke, const ReactionModel& model, const Domain& domain,
+                  const AtlasPositions* positions) {
     Brush brush;
     brush.mode = stroke.mode;
     brush.value = stroke.value;
@@ -105,7 +146,7 @@ Brush strokeBrush(const StrokeSpec& stroke, const ReactionModel& model, const Do
                              "model '" + model.name() + "' (accepted: " + model.paramNames() + ")");
         brush.param = stroke.param;
     }
-    brush.region = strokeRegion(stroke, domain);
+    brush.region = strokeRegion(stroke, domain, positions);
     return brush;
 }
 

@@ -3,22 +3,32 @@
 #include "core/session/live_edit.hpp"
 #include "core/sim/brush.hpp"
 
+#include <array>
 #include <cstdint>
 #include <unordered_map>
+#include <vector>
 
 namespace morphogen {
+
+// Per atlas cell, its centre on the mesh (Session::atlasPositions).
+using AtlasPositions = std::vector<std::array<float, 3>>;
 
 // The cells a recorded stroke covers on a grid of `domain`'s size: the disc of
 // the stroke's radius swept along its path (a dab for one point), with the
 // disc brush's falloff profile of the distance to the path. Canvas fractions
 // become cells as cell (x, y) covers [x, x+1) x [y, y+1) of a width x height
 // canvas. Periodic edges wrap the stroke; clamped edges cut it.
-BrushRegion strokeRegion(const StrokeSpec& stroke, const Domain& domain);
+// A surface stroke: the used atlas texels whose centre (`positions`) lies
+// within the radius of the path in 3D, with the same profile; InputError
+// without positions.
+BrushRegion strokeRegion(const StrokeSpec& stroke, const Domain& domain,
+                         const AtlasPositions* positions = nullptr);
 
 // The brush write of a stroke for the model in force (its chemical and
 // parameter names resolved). Throws InputError when the model lacks the
 // stroke's chemical or parameter (a stage switched models), naming both.
-Brush strokeBrush(const StrokeSpec& stroke, const ReactionModel& model, const Domain& domain);
+Brush strokeBrush(const StrokeSpec& stroke, const ReactionModel& model, const Domain& domain,
+                  const AtlasPositions* positions = nullptr);
 
 // What a stroke has covered so far, per cell: the largest weight any of its
 // pieces gave the cell (chemical modes).

@@ -92,6 +92,11 @@ SurfaceSetup setUpSurface(Session& session,
         }
     setup.texelUnits = used ? std::sqrt(texelArea / double(used)) * setup.unitsPerWorld : 0;
     useAtlas(session, setup.tiles.atlas, setup.weights);
+    auto positions = std::make_shared<std::vector<std::array<float, 3>>>();
+    positions->reserve(setup.tiles.texelPositions.size());
+    for (const Eigen::Vector3f& p : setup.tiles.texelPositions)
+        positions->push_back({p.x(), p.y(), p.z()});
+    session.atlasPositions = std::move(positions);
     setup.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return setup;
 }
