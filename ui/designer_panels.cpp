@@ -134,7 +134,8 @@ void Designer::drawControls(float x, float y, float w, float h) {
 }
 
 void Designer::drawModelSection() {
-    const Session& base = m_doc.session();
+    // A copy: a change below replaces the document's session mid-loop.
+    const Session base = m_doc.session();
     const ReactionModel& model = base.reactionModel();
     ImGui::TextWrapped("%s", base.name.empty() ? "(unnamed session)" : base.name.c_str());
     if (!base.description.empty()) {
@@ -192,7 +193,9 @@ void Designer::drawModelSection() {
     // The operator's own settings: a change restarts the run (a saved
     // session reproduces a run only from its start).
     if (base.diffusion.type == DiffusionType::Anisotropic) {
-        for (const auto& [chemical, tensor] : base.diffusion.anisotropic) {
+        for (const auto& entry : base.diffusion.anisotropic) {
+            const std::string& chemical = entry.first;
+            const AnisotropicTensor& tensor = entry.second;
             float values[3] = {float(tensor.theta), float(tensor.a1), float(tensor.a2)};
             ImGui::PushID(chemical.c_str());
             ImGui::Text("%s: angle, a1, a2", chemical.c_str());
@@ -208,7 +211,9 @@ void Designer::drawModelSection() {
             ImGui::PopID();
         }
     } else if (base.diffusion.type == DiffusionType::Generalized) {
-        for (const auto& [chemical, set] : base.diffusion.generalized) {
+        for (const auto& entry : base.diffusion.generalized) {
+            const std::string& chemical = entry.first;
+            const std::string& set = entry.second;
             ImGui::PushID(chemical.c_str());
             if (ImGui::BeginCombo(("tensors " + chemical).c_str(), set.c_str())) {
                 for (const char* letter : {"a", "b", "c", "d", "e", "f"})
