@@ -48,6 +48,12 @@ struct BackgroundJob {
     std::function<void()> finish;
 };
 
+// One axis of the parameter-map panel.
+struct MapAxis {
+    std::string param;
+    float min = 0, max = 1;
+};
+
 // The designer's 3D view: an orbit camera round the model's bounding sphere.
 struct Orbit {
     double azimuth = 30, elevation = 20;
@@ -86,6 +92,9 @@ public:
     void changeParam(const std::string& name, float value); // one undo step
     void setStepsPerFrame(int steps);                       // 0: automatic
     void quit() { m_quit = true; }
+    // Brings a side panel tab to the front: 0 presets, 1 history, 2 map.
+    void showTab(int tab) { m_requestTab = tab; }
+    void renderMap(); // the map panel's button: on a worker thread, into the panel
 
     Document& document() { return m_doc; }
     BrushSettings& brush() { return m_brush; }
@@ -93,6 +102,7 @@ public:
     std::array<float, 4> canvasRect() const { return m_canvasRect; }
     std::array<float, 4> modelRect() const { return m_modelRect; } // the 3D view's
     bool hasModel() const { return m_surface != nullptr; }
+    bool jobRunning() const { return m_job != nullptr; }
     const CanvasView& canvasView() const { return m_view; }
     // Shows an error in the status line and on stderr; the script fails on it.
     void reportError(const std::string& message);
@@ -123,6 +133,7 @@ private:
     void drawSidePanel(float x, float y, float w, float h);
     void drawPresets();
     void drawHistory();
+    void drawMapPanel();
     void drawStatusBar(float y, float h);
     void drawPopups();
     void drawJob();
@@ -174,7 +185,11 @@ private:
     BoundingSphere m_modelBounds;
     bool m_modelStale = true;
     std::chrono::steady_clock::time_point m_lastModelRender;
-    int m_viewMode = 0; // 0: canvas and model side by side, 1: canvas, 2: model
+    std::string m_mapModel; // the model the axes were chosen for
+    std::array<MapAxis, 2> m_mapAxes, m_mapRendered;
+    gl::Texture2D m_mapImage;
+    int m_viewMode = 0;
+    int m_requestTab = -1; // 0: canvas and model side by side, 1: canvas, 2: model
     std::vector<Session> m_presets;
     State m_readout; // the state under the cursor's readout, refreshed ten times a second
     std::chrono::steady_clock::time_point m_lastReadout;

@@ -187,14 +187,22 @@ void Designer::drawSidePanel(float x, float y, float w, float h) {
                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
                      ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoTitleBar);
     if (ImGui::BeginTabBar("side")) {
-        if (ImGui::BeginTabItem("Presets")) {
+        auto flags = [this](int tab) {
+            return m_requestTab == tab ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None;
+        };
+        if (ImGui::BeginTabItem("Presets", nullptr, flags(0))) {
             drawPresets();
             ImGui::EndTabItem();
         }
-        if (ImGui::BeginTabItem("History")) {
+        if (ImGui::BeginTabItem("History", nullptr, flags(1))) {
             drawHistory();
             ImGui::EndTabItem();
         }
+        if (ImGui::BeginTabItem("Map", nullptr, flags(2))) {
+            drawMapPanel();
+            ImGui::EndTabItem();
+        }
+        m_requestTab = -1;
         ImGui::EndTabBar();
     }
     ImGui::End();

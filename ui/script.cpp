@@ -1,5 +1,6 @@
 #include "ui/script.hpp"
 
+#include <algorithm>
 #include <cfloat>
 #include <cstdio>
 #include <fstream>
@@ -30,6 +31,9 @@ const std::map<std::string, std::pair<int, int>> kVerbs = {
     {"drag", {4, 5}},
     {"hover", {2, 2}},
     {"drag-model", {4, 5}},
+    {"tab", {1, 1}},
+    {"render-map", {0, 0}},
+    {"wait-job", {0, 0}},
     {"key", {1, 1}},
     {"save", {1, 1}},
     {"export", {1, 2}},
@@ -227,6 +231,17 @@ bool ScriptPlayer::start(Designer& d, const ScriptCommand& c) {
             parseCombo(a[0], c.line, m_key, m_ctrl, m_shift);
             m_releaseKey = false;
             return false;
+        } else if (c.verb == "tab") {
+            const std::vector<std::string> tabs = {"presets", "history", "map"};
+            const auto it = std::find(tabs.begin(), tabs.end(), a[0]);
+            if (it == tabs.end())
+                throw InputError("tab '" + a[0] + "' (accepted: presets, history, map)");
+            d.showTab(int(it - tabs.begin()));
+        } else if (c.verb == "render-map")
+            d.renderMap();
+        else if (c.verb == "wait-job") {
+            m_waitJob = true;
+            return false;
         } else if (c.verb == "save")
             d.saveSession(a[0]);
         else if (c.verb == "export")
@@ -263,8 +278,10 @@ void ScriptPlayer::beforeFrame(Designer& d) {
     checkErrors(d);
     if (m_untilStep >= 0 && d.document().steps() >= m_untilStep)
         m_untilStep = -1;
-    while (!released && !m_failed && m_wait == 0 && m_untilStep < 0 && !m_dragging && m_key < 0 &&
-           m_next < m_commands.size()) {
+    if (m_waitJob && !d.jobRunning())
+        m_waitJob = false;
+    while (!m_waitJob && !released && !m_failed && m_wait == 0 && m_untilStep < 0 && !m_dragging &&
+           m_key < 0 && m_next < m_commands.size()) {
         if (!start(d, m_commands[m_next++]))
             break;
     }

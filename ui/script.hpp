@@ -24,6 +24,9 @@ class Designer;
 //   hover X Y                   rest the pointer there (outside 0..1: off the canvas)
 //   drag-model X0 Y0 X1 Y1 [FRAMES]  left-drag over the 3D view, in fractions of it
 //   key COMBO                   e.g. space, ctrl+z, ctrl+shift+z, r, t, f
+//   tab presets|history|map     bring a side panel to the front
+//   render-map                  the map panel's button
+//   wait-job                    let frames pass until a background job (map, export, tiles) ends
 //   save FILE | export FILE [BITS] | screenshot FILE
 //   expect-steps N              fail unless the run is at step N
 //   quit
@@ -61,6 +64,7 @@ private:
     std::size_t m_next = 0;
     int m_wait = 0; // frames left of a `frames` command
     long long m_untilStep = -1;
+    bool m_waitJob = false;
     // A drag in progress: canvas fractions, the frame it is on, its length.
     bool m_dragging = false;
     double m_from[2] = {0, 0}, m_to[2] = {0, 0};
