@@ -389,3 +389,18 @@ TEST(LiveChanges, ReplaceSessionRebuildsAndKeepsTheState) {
     other.advance(80); // still the original run
     EXPECT_EQ(test::maxAbsDifference(other.state(), runSession(s, cpu(), {}).state), 0.0f);
 }
+
+TEST(SessionRun, StoppedBeforeAModelChangeWritesAReadableSession) {
+    // turk_giraffe's colour map names a chemical of its second stage's model;
+    // stopped in the first stage, the completed session shows the first model.
+    Session s = smallGiraffe();
+    ASSERT_FALSE(s.colormap.chemical.empty());
+    SessionRun run(s, cpu());
+    run.advance(50);
+    const Session done = run.completed();
+    EXPECT_EQ(done.stages.size(), 1u);
+    EXPECT_NO_THROW(sessionFromJson(sessionToJson(done), "stopped.json"));
+    // Past the switch, the map keeps its chemical.
+    run.advance(260);
+    EXPECT_EQ(run.completed().colormap.chemical, s.colormap.chemical);
+}

@@ -14,7 +14,10 @@
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
 #include "core/output/colormap.hpp"
+#include "core/output/frames.hpp"
 #include "core/sim/cpu_simulator.hpp"
+#include "core/surface/surface_colours.hpp"
+#include "core/surface/surface_glb.hpp"
 #include "ui/script.hpp"
 
 namespace morphogen::ui {
@@ -166,6 +169,55 @@ void Designer::exportTextureSet(const std::string& dir) {
         m_services.writeTextureSet(result, dir);
         m_status = "wrote the texture set in " + dir;
     });
+}
+
+void Designer::exportModel(const std::string& path) {
+    guarded("export model", [&] {
+        if (!m_surface)
+            throw InputError("the open session grows on a flat canvas: a model (GLB) export "
+                             "needs a session on a mesh");
+        Session shown = m_doc.live();
+        shown.colormap = m_doc.liveColormap();
+        const SurfaceColours c = surfaceColours(m_doc.run().state(), shown, *shown.atlas);
+        exportSurfaceGlb(m_surface->tiles, c.height, c.colours, path);
+        saveSessionFile(m_doc.completed(), fs::path(path).replace_extension(".json").string());
+        m_status = "exported " + path;
+    });
+}
+
+void Designer::recordFrames(const std::string& dir, int every) {
+    guarded("record", [&] {
+        if (dir.empty()) {
+            if (!m_recordDir.empty())
+                m_status =
+                    "recorded " + std::to_string(m_recordIndex) + " frames in " + m_recordDir;
+            m_recordDir.clear();
+            return;
+        }
+        if (every < 1)
+            throw InputError("frames every " + std::to_string(every) + " steps: give 1 or more");
+        fs::create_directories(dir);
+        m_recordDir = dir;
+        m_recordEvery = every;
+        m_recordIndex = 0;
+        m_recordNext = m_doc.steps();
+        m_status = "recording frames in " + dir;
+    });
+}
+
+void Designer::writeRecordedFrame() {
+    bool written = false;
+    guarded("record", [&] {
+        const State state = m_doc.run().state();
+        const Session& live = m_doc.live();
+        const std::vector<float> rgb =
+            applyColormap(state, m_doc.liveChemical(), m_doc.liveColormap());
+        writeRgbImage(framePath(m_recordDir, m_recordIndex++), rgb, state.width(), state.height(),
+                      8);
+        written = true;
+    });
+    if (!written)
+        m_recordDir.clear(); // a failing folder stops the recording, said once
 }
 
 void Designer::exportAtSize(const std::string& path, int width, int height, int bitDepth) {
@@ -445,6 +497,10 @@ void Designer::simulate() {
         reportError(e.what());
     }
     m_simSeconds = seconds(Clock::now() - start);
+    if (!m_recordDir.empty() && m_doc.steps() >= m_recordNext) {
+        writeRecordedFrame();
+        m_recordNext = m_doc.steps() + m_recordEvery;
+    }
     if (m_stepsPerFrame == 0) {
         // Keep a frame within its budget: grow the steps while the
         // simulation takes less than ~70% of it, shrink them when it takes more.
@@ -470,12 +526,13 @@ void Designer::refreshDisplay() {
     const ReactionModel& model = live.reactionModel();
     const int chemical = m_displayChemical >= 0 && m_displayChemical < int(model.chemicals().size())
                              ? m_displayChemical
-                             : colormapChemical(live.colormap, model);
+                             : m_doc.liveChemical();
     guarded("display", [&] {
         if (m_scrub && *m_scrub < m_doc.history().size())
-            m_display->upload(m_doc.history()[*m_scrub].checkpoint.state, chemical, live.colormap);
+            m_display->upload(m_doc.history()[*m_scrub].checkpoint.state, chemical,
+                              m_doc.liveColormap());
         else
-            m_display->update(m_doc.run().simulator(), chemical, live.colormap);
+            m_display->update(m_doc.run().simulator(), chemical, m_doc.liveColormap());
     });
 }
 
@@ -595,6 +652,10 @@ void Designer::drawStatusBar(float y, float h) {
                 m_stepsPerSecond, m_stepsPerFrame > 0 ? m_stepsPerFrame : m_autoSteps,
                 m_stepsPerFrame > 0 ? "" : " (auto)", backend.c_str(),
                 m_doc.dirty() ? " | unsaved changes" : "");
+    if (!m_recordDir.empty()) {
+        ImGui::SameLine();
+        ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "| REC %d frames", m_recordIndex);
+    }
     if (!m_status.empty()) {
         ImGui::SameLine();
         ImGui::TextColored(m_status == m_lastError ? ImVec4(1, 0.45f, 0.4f, 1)

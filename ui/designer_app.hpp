@@ -81,6 +81,13 @@ public:
     // cancellable) and writes it as exportImage does.
     void exportAtSize(const std::string& path, int width, int height, int bitDepth);
     void exportTextureSet(const std::string& dir);
+    // A session on a mesh: the model re-textured with the pattern (GLB, with
+    // a normal map), as `render --mesh ... --out model.glb` writes it.
+    void exportModel(const std::string& path);
+    // Growth animation: while on, every `every` steps the canvas is written
+    // as the next numbered PNG in `dir` (frame_00000.png, ...), colour-mapped
+    // as the export; empty dir: off.
+    void recordFrames(const std::string& dir, int every);
     void screenshot(const std::string& path); // the whole window, after this frame
     void setPlaying(bool playing) { m_playing = playing; }
     bool playing() const { return m_playing; }
@@ -139,6 +146,7 @@ private:
     void drawJob();
     void autosave(bool force);
     void writeScreenshot();
+    void writeRecordedFrame();
     // Runs `f`, reporting an exception as an error instead of leaving the frame.
     void guarded(const char* what, const std::function<void()>& f);
 
@@ -188,6 +196,9 @@ private:
     std::string m_mapModel; // the model the axes were chosen for
     std::array<MapAxis, 2> m_mapAxes, m_mapRendered;
     gl::Texture2D m_mapImage;
+    std::string m_recordDir;
+    int m_recordEvery = 100, m_recordIndex = 0;
+    long long m_recordNext = 0;
     int m_viewMode = 0;
     int m_requestTab = -1; // 0: canvas and model side by side, 1: canvas, 2: model
     std::vector<Session> m_presets;

@@ -153,6 +153,29 @@ void Designer::drawPopups() {
             exportTextureSet(fs::path(m_pathBuffer).replace_extension("").string() + "_maps");
             ImGui::CloseCurrentPopup();
         }
+        if (m_surface) {
+            if (ImGui::Button("Model (GLB)")) {
+                exportModel(fs::path(m_pathBuffer).replace_extension(".glb").string());
+                ImGui::CloseCurrentPopup();
+            }
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("The model re-textured with the pattern: base colour and "
+                                  "normal map, as render --mesh ... --out model.glb");
+            ImGui::SameLine();
+        }
+        ImGui::SetNextItemWidth(80);
+        ImGui::InputInt("steps per frame", &m_recordEvery);
+        ImGui::SameLine();
+        if (ImGui::Button(m_recordDir.empty() ? "Record growth frames" : "Stop recording")) {
+            recordFrames(m_recordDir.empty()
+                             ? fs::path(m_pathBuffer).replace_extension("").string() + "_frames"
+                             : "",
+                         m_recordEvery);
+            ImGui::CloseCurrentPopup();
+        }
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("While the pattern grows, a numbered PNG every N steps in a folder "
+                              "next to the file (ffmpeg or render --frames make a video)");
         ImGui::SameLine();
         if (ImGui::Button("Cancel"))
             ImGui::CloseCurrentPopup();

@@ -130,6 +130,7 @@ void Designer::drawMapPanel() {
 
 void Designer::renderMap() {
     Session s = m_doc.live();
+    s.colormap = m_doc.liveColormap();
     s.name = "map";
     s.atlas.reset();
     s.atlasWeights.reset();

@@ -117,7 +117,9 @@ void Designer::renderModelView(int width, int height) {
     m_modelStale = false;
     m_lastModelRender = Clock::now();
     const Session& live = m_doc.live();
-    const SurfaceColours c = surfaceColours(m_doc.run().state(), live, *live.atlas);
+    Session shown = live;
+    shown.colormap = m_doc.liveColormap();
+    const SurfaceColours c = surfaceColours(m_doc.run().state(), shown, *live.atlas);
     const gl::SurfaceRenderer renderer(texturedSurface(m_surface->tiles, c.height, c.colours));
     gl::ViewOptions view;
     view.width = width;

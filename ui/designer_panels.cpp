@@ -119,7 +119,8 @@ void Designer::drawControls(float x, float y, float w, float h) {
         m_stepsPerFrame = std::max(1, steps);
     if (m_doc.run().position().segments > 1) {
         const RunPosition p = m_doc.run().position();
-        ImGui::Text("stage %d of %d, step %d", p.segment + 1, p.segments, p.segmentStep);
+        ImGui::Text("%s %d of %d, step %d", p.stages ? "stage" : "level", p.segment + 1, p.segments,
+                    p.segmentStep / std::max(1, m_doc.run().substeps()));
     }
     ImGui::Separator();
     if (ImGui::CollapsingHeader("Model and operator", ImGuiTreeNodeFlags_DefaultOpen))
@@ -399,8 +400,7 @@ void Designer::drawBrushSection() {
 void Designer::drawDisplaySection() {
     const Session& base = m_doc.live();
     const ReactionModel& model = base.reactionModel();
-    const int shown =
-        m_displayChemical >= 0 ? m_displayChemical : colormapChemical(base.colormap, model);
+    const int shown = m_displayChemical >= 0 ? m_displayChemical : m_doc.liveChemical();
     if (ImGui::BeginCombo("shows", model.chemicals()[std::size_t(shown)].name.c_str())) {
         for (int c = 0; c < int(model.chemicals().size()); ++c)
             if (ImGui::Selectable(model.chemicals()[std::size_t(c)].name.c_str(), c == shown))

@@ -6,6 +6,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/limits.hpp"
+#include "core/output/colormap.hpp"
 
 namespace morphogen::ui {
 
@@ -247,6 +248,17 @@ void Document::redo() {
     m_redo.pop_back();
     a.redo();
     m_undo.push_back(std::move(a));
+}
+
+ColorMapSpec Document::liveColormap() const {
+    ColorMapSpec spec = live().colormap;
+    if (!spec.chemical.empty() && live().reactionModel().chemicalIndex(spec.chemical) < 0)
+        spec.chemical.clear();
+    return spec;
+}
+
+int Document::liveChemical() const {
+    return colormapChemical(liveColormap(), live().reactionModel());
 }
 
 Session Document::completed() const {

@@ -38,6 +38,11 @@ public:
     const std::string& path() const { return m_path; }
     // The session the current segment runs, live values included.
     const Session& live() const { return m_run->segmentSession(); }
+    // live()'s colour map for what the current segment holds: a cascade's
+    // map may name a chemical of a later stage's model, shown from then on;
+    // before, the segment's model's display chemical.
+    ColorMapSpec liveColormap() const;
+    int liveChemical() const;
     SessionRun& run() { return *m_run; }
     const SessionRun& run() const { return *m_run; }
 

@@ -32,6 +32,9 @@ const std::map<std::string, std::pair<int, int>> kVerbs = {
     {"hover", {2, 2}},
     {"drag-model", {4, 5}},
     {"tab", {1, 1}},
+    {"export-model", {1, 1}},
+    {"record", {2, 2}},
+    {"record-stop", {0, 0}},
     {"render-map", {0, 0}},
     {"wait-job", {0, 0}},
     {"key", {1, 1}},
@@ -237,7 +240,13 @@ bool ScriptPlayer::start(Designer& d, const ScriptCommand& c) {
             if (it == tabs.end())
                 throw InputError("tab '" + a[0] + "' (accepted: presets, history, map)");
             d.showTab(int(it - tabs.begin()));
-        } else if (c.verb == "render-map")
+        } else if (c.verb == "export-model")
+            d.exportModel(a[0]);
+        else if (c.verb == "record")
+            d.recordFrames(a[0], int(number(c, a[1])));
+        else if (c.verb == "record-stop")
+            d.recordFrames("", 1);
+        else if (c.verb == "render-map")
             d.renderMap();
         else if (c.verb == "wait-job") {
             m_waitJob = true;
@@ -278,6 +287,8 @@ void ScriptPlayer::beforeFrame(Designer& d) {
     checkErrors(d);
     if (m_untilStep >= 0 && d.document().steps() >= m_untilStep)
         m_untilStep = -1;
+    else if (m_untilStep >= 0)
+        d.setPlaying(true); // an opened session pauses when its replay ends
     if (m_waitJob && !d.jobRunning())
         m_waitJob = false;
     while (!m_waitJob && !released && !m_failed && m_wait == 0 && m_untilStep < 0 && !m_dragging &&

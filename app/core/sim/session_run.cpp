@@ -376,6 +376,12 @@ Session SessionRun::completed() const {
     // With edits, they are the record of live changes: the session starts
     // from its own values and replays them (a change by setParams outside an
     // edit is not recorded then).
+    // A cascade stopped before the stage that switches to the model its
+    // colour map names: the written session must still read back, showing
+    // the model it ends with.
+    if (!done.colormap.chemical.empty() &&
+        done.outputModel().chemicalIndex(done.colormap.chemical) < 0)
+        done.colormap.chemical.clear();
     done.edits = m_applied;
     if (!m_applied.empty()) {
         done.params = m_session.params;
