@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -128,6 +129,7 @@ private:
     void drawModelSection();
     void drawParamsSection();
     void drawBrushSection();
+    void drawCascadeSection();
     void drawDisplaySection();
     void drawCanvas(float x, float y, float w, float h);
     void drawModelView(float x, float y, float w, float h);
@@ -200,7 +202,10 @@ private:
     int m_recordEvery = 100, m_recordIndex = 0;
     long long m_recordNext = 0;
     int m_viewMode = 0;
-    int m_requestTab = -1; // 0: canvas and model side by side, 1: canvas, 2: model
+    int m_requestTab = -1;
+    std::map<std::size_t, std::string>
+        m_stageText; // the cascade editor's JSON being edited // 0: canvas and model side by side,
+                     // 1: canvas, 2: model
     std::vector<Session> m_presets;
     State m_readout; // the state under the cursor's readout, refreshed ten times a second
     std::chrono::steady_clock::time_point m_lastReadout;

@@ -127,6 +127,10 @@ void Designer::drawControls(float x, float y, float w, float h) {
         drawModelSection();
     if (ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen))
         drawParamsSection();
+    if (ImGui::CollapsingHeader("Cascade", m_doc.session().stages.empty()
+                                               ? ImGuiTreeNodeFlags_None
+                                               : ImGuiTreeNodeFlags_DefaultOpen))
+        drawCascadeSection();
     if (ImGui::CollapsingHeader("Brush", ImGuiTreeNodeFlags_DefaultOpen))
         drawBrushSection();
     if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
