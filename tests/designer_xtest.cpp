@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/io/image_io.hpp"
 #include "core/session/session.hpp"
@@ -212,6 +213,51 @@ TEST(Designer, CascadeRecordingAndModelExport) {
     EXPECT_EQ(glb.substr(0, 4), "glTF");
     EXPECT_EQ(int(glb[4]), 2);
     EXPECT_TRUE(loadSessionFile(d + "blob.json").surface.active());
+}
+
+TEST(Designer, ACrashLosesAtMostTheAutosaveInterval) {
+    // A run that crashes after its autosave leaves the session behind; the
+    // next run restores it (the restore offer's button) and replays it to the
+    // same step, strokes included.
+    const fs::path dir = work();
+    Session start = loadPreset("gs_coral");
+    resizeSession(start, 64, 64);
+    start.steps = 0;
+    saveSessionFile(start, (dir / "crash_start.json").string());
+    const std::string d = dir.string() + "/";
+    const std::string dirs = " --config-dir " + d + "c4 --state-dir " + d + "s4";
+    writeText(dir / "crash.txt", "open " + d +
+                                     "crash_start.json\n"
+                                     "steps-per-frame 10\n"
+                                     "until-step 120\n"
+                                     "pause\n"
+                                     "brush add chemical v value 0.5 radius 0.1\n"
+                                     "drag 0.3 0.3 0.6 0.6 6\n"
+                                     "frames 3\n" // autosaves (every 0 s here)
+                                     "crash\n");
+    std::string err;
+    EXPECT_NE(
+        runMorphogen("design --backend cpu --autosave-seconds 0 --script " + d + "crash.txt" + dirs,
+                     &err),
+        0);
+    ASSERT_TRUE(fs::exists(dir / "s4" / "autosave.json")) << err;
+    const Session autosaved = loadSessionFile(d + "s4/autosave.json");
+    EXPECT_EQ(autosaved.steps, 120);
+    EXPECT_GE(strokeEdits(autosaved), 2);
+
+    writeText(dir / "restore.txt", "restore-autosave\n"
+                                   "until-step 120\n"
+                                   "expect-steps 120\n"
+                                   "save " +
+                                       d +
+                                       "restored_saved.json\n"
+                                       "quit\n");
+    ASSERT_EQ(runMorphogen("design --backend cpu --script " + d + "restore.txt" + dirs, &err), 0)
+        << err;
+    EXPECT_EQ(sessionToJson(loadSessionFile(d + "restored_saved.json")).dump(),
+              sessionToJson(autosaved).dump());
+    // The clean exit removed the crash marker.
+    EXPECT_FALSE(fs::exists(dir / "s4" / "autosave.json"));
 }
 
 TEST(Designer, BadScriptIsRefusedBeforeAWindowOpens) {

@@ -17,6 +17,7 @@ struct DesignerOptions {
     // Where settings and autosaves live; empty: $XDG_CONFIG_HOME/morphogen and
     // $XDG_STATE_HOME/morphogen (or ~/.config, ~/.local/state).
     std::string configDir, stateDir;
+    double autosaveSeconds = 60; // while there are unsaved changes
 };
 
 // The CLI's writers, handed in by the design command so that the designer's

@@ -26,7 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr double kFrameBudget = 1.0 / 60.0; // seconds: the auto steps-per-frame target
-constexpr double kAutosaveSeconds = 60.0;
 constexpr const char* kDefaultPreset = "gs_coral";
 
 } // namespace
@@ -312,6 +311,21 @@ void Designer::openSurfaceSession(Session session, const std::string& path, long
 
 void Designer::screenshot(const std::string& path) {
     m_pendingScreenshot = path;
+}
+
+void Designer::restoreAutosave() {
+    const std::string path = m_settings.autosavePath();
+    if (!fs::exists(path)) {
+        reportError("there is no autosave to restore (" + path + ")");
+        return;
+    }
+    // Opened from a copy: the autosave keeps being the crash marker until
+    // this run saves or exits cleanly.
+    const std::string copy = (fs::path(m_settings.stateDir) / "restored.json").string();
+    guarded("restore", [&] {
+        fs::copy_file(path, copy, fs::copy_options::overwrite_existing);
+        openSessionFile(copy);
+    });
 }
 
 void Designer::stepOnce() {
@@ -703,7 +717,7 @@ void Designer::autosave(bool force) {
     if (!m_doc.isOpen() || !m_doc.dirty())
         return;
     const Clock::time_point now = Clock::now();
-    if (!force && seconds(now - m_lastAutosave) < kAutosaveSeconds)
+    if (!force && seconds(now - m_lastAutosave) < m_options.autosaveSeconds)
         return;
     m_lastAutosave = now;
     try {

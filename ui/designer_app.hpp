@@ -90,6 +90,8 @@ public:
     // as the export; empty dir: off.
     void recordFrames(const std::string& dir, int every);
     void screenshot(const std::string& path); // the whole window, after this frame
+    // Opens the autosave a crash left (the restore offer's button).
+    void restoreAutosave();
     void setPlaying(bool playing) { m_playing = playing; }
     bool playing() const { return m_playing; }
     void stepOnce();

@@ -202,7 +202,7 @@ void Designer::drawPopups() {
         ImGui::Text("The designer did not exit cleanly last time.");
         ImGui::Text("Its work is autosaved in %s.", m_settings.autosavePath().c_str());
         if (ImGui::Button("Restore it")) {
-            openSessionFile(m_settings.autosavePath());
+            restoreAutosave();
             ImGui::CloseCurrentPopup();
         }
         ImGui::SameLine();

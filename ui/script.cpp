@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -32,6 +33,8 @@ const std::map<std::string, std::pair<int, int>> kVerbs = {
     {"hover", {2, 2}},
     {"drag-model", {4, 5}},
     {"tab", {1, 1}},
+    {"restore-autosave", {0, 0}},
+    {"crash", {0, 0}},
     {"export-model", {1, 1}},
     {"record", {2, 2}},
     {"record-stop", {0, 0}},
@@ -240,6 +243,13 @@ bool ScriptPlayer::start(Designer& d, const ScriptCommand& c) {
             if (it == tabs.end())
                 throw InputError("tab '" + a[0] + "' (accepted: presets, history, map)");
             d.showTab(int(it - tabs.begin()));
+        } else if (c.verb == "restore-autosave")
+            d.restoreAutosave();
+        else if (c.verb == "crash") {
+            // Tests of crash recovery: ends the process as a crash would,
+            // without the clean exit's saves.
+            std::fprintf(stderr, "morphogen design: script line %d: crashing on purpose\n", c.line);
+            std::_Exit(134);
         } else if (c.verb == "export-model")
             d.exportModel(a[0]);
         else if (c.verb == "record")

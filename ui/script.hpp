@@ -27,6 +27,8 @@ class Designer;
 //   tab presets|history|map     bring a side panel to the front
 //   render-map                  the map panel's button
 //   wait-job                    let frames pass until a background job (map, export, tiles) ends
+//   restore-autosave            the crash-restore offer's button
+//   crash                       end the process at once, as a crash would (recovery tests)
 //   save FILE | export FILE [BITS] | screenshot FILE | export-model FILE.glb
 //   record DIR EVERY | record-stop   growth frames: a PNG every EVERY steps
 //   expect-steps N              fail unless the run is at step N

@@ -53,6 +53,9 @@ void addDesignCommand(CLI::App& app) {
                     "Settings folder (default $XDG_CONFIG_HOME/morphogen)");
     cmd->add_option("--state-dir", options->stateDir,
                     "Autosave folder (default $XDG_STATE_HOME/morphogen)");
+    cmd->add_option("--autosave-seconds", options->autosaveSeconds,
+                    "Seconds between autosaves while there are unsaved changes (default 60)")
+        ->check(CLI::Range(0.0, 86400.0));
     cmd->callback([options] {
         (void)gl::parseBackendChoice(options->backend); // bad input: exit 2 before a window
         if (options->width < 320 || options->width > 16384 || options->height < 240 ||

@@ -158,6 +158,10 @@ int SessionRun::advance(int steps) {
             }
         }
     }
+    // Edits due where the run stopped apply now: a run paused there (a
+    // designer that replayed a saved session to its last step) holds them,
+    // and its completed() records them.
+    applyDueEdits();
     return run;
 }
 
