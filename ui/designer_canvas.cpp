@@ -10,6 +10,7 @@
 
 #include "core/base/names.hpp"
 #include "ui/designer_app.hpp"
+#include "ui/layout_window.hpp"
 
 namespace morphogen::ui {
 
@@ -22,13 +23,7 @@ ImTextureID textureId(unsigned id) {
 } // namespace
 
 void Designer::drawCanvas(float x, float y, float w, float h) {
-    ImGui::SetNextWindowPos(ImVec2(x, y));
-    ImGui::SetNextWindowSize(ImVec2(w, h));
-    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-    ImGui::Begin("Canvas", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
-                     ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse);
-    ImGui::PopStyleVar();
+    beginView("Canvas", x, y, w, h);
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const ImVec2 size = ImGui::GetContentRegionAvail();
     m_canvasRect = {origin.x, origin.y, size.x, size.y};
@@ -181,11 +176,7 @@ StrokeSpec Designer::strokeFromBrush() const {
 }
 
 void Designer::drawSidePanel(float x, float y, float w, float h) {
-    ImGui::SetNextWindowPos(ImVec2(x, y));
-    ImGui::SetNextWindowSize(ImVec2(w, h));
-    ImGui::Begin("Library", nullptr,
-                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
-                     ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoTitleBar);
+    beginPanel("Library", x, y, w, h);
     if (ImGui::BeginTabBar("side")) {
         auto flags = [this](int tab) {
             return m_requestTab == tab ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None;

@@ -14,6 +14,7 @@
 #include "core/surface/textured_surface.hpp"
 #include "gl/surface_view.hpp"
 #include "ui/designer_app.hpp"
+#include "ui/layout_window.hpp"
 
 namespace morphogen::ui {
 
@@ -26,13 +27,7 @@ constexpr double kModelRefreshSeconds = 0.25;
 } // namespace
 
 void Designer::drawModelView(float x, float y, float w, float h) {
-    ImGui::SetNextWindowPos(ImVec2(x, y));
-    ImGui::SetNextWindowSize(ImVec2(w, h));
-    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-    ImGui::Begin("Model", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
-                     ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse);
-    ImGui::PopStyleVar();
+    beginView("Model", x, y, w, h);
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const ImVec2 size = ImGui::GetContentRegionAvail();
     m_modelRect = {origin.x, origin.y, size.x, size.y};

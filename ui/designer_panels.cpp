@@ -15,6 +15,7 @@
 #include "core/output/colormap.hpp"
 #include "core/sim/stability_check.hpp"
 #include "ui/designer_app.hpp"
+#include "ui/layout_window.hpp"
 
 namespace morphogen::ui {
 
@@ -84,11 +85,7 @@ void drawPropagator(const std::string& set) {
 } // namespace
 
 void Designer::drawControls(float x, float y, float w, float h) {
-    ImGui::SetNextWindowPos(ImVec2(x, y));
-    ImGui::SetNextWindowSize(ImVec2(w, h));
-    ImGui::Begin("Controls", nullptr,
-                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
-                     ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoTitleBar);
+    beginPanel("Controls", x, y, w, h);
     // Resizing the panel moves the canvas' edge.
     if (ImGui::GetWindowSize().x != w)
         m_controlsWidth = ImGui::GetWindowSize().x;
