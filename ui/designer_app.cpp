@@ -208,7 +208,6 @@ void Designer::writeRecordedFrame() {
     bool written = false;
     guarded("record", [&] {
         const State state = m_doc.run().state();
-        const Session& live = m_doc.live();
         const std::vector<float> rgb =
             applyColormap(state, m_doc.liveChemical(), m_doc.liveColormap());
         writeRgbImage(framePath(m_recordDir, m_recordIndex++), rgb, state.width(), state.height(),
