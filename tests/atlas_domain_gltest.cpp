@@ -114,6 +114,40 @@ TEST(AtlasGpu, AgreesWithTheCpuWithNonUniformWeights) {
     }
 }
 
+// The same with diagonals (the ATLAS_CROSS variant, the 9-point stencil of
+// sheared surface texels): interior texels read the grid's diagonals, border
+// texels one order of the diagonal maps.
+TEST(AtlasGpu, AgreesWithTheCpuWithNinePointWeights) {
+    for (auto atlas : {std::make_shared<const Atlas>(Atlas::cube(16)),
+                       std::make_shared<const Atlas>(Atlas::rotatedTiles(8))}) {
+        const Session s =
+            withWeights(test::atlasSession(atlas), test::symmetricNinePointWeights(*atlas, 5));
+        const State start =
+            makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, 11);
+        const State cpu = runOn<CpuSimulator>(s, start, 60);
+        const State gpu = runOn<gl::GpuSimulator>(s, start, 60);
+        EXPECT_LT(test::maxAbsDifference(cpu, gpu), 1e-5f * test::maxAbsValue(cpu));
+        EXPECT_GT(test::maxAbsDifference(cpu, start), 1e-3f) << "nothing happened";
+        // The diagonals matter: the same weights without them differ by far more.
+        AtlasWeights five = test::symmetricNinePointWeights(*atlas, 5);
+        five.diagonal.clear();
+        const State plain =
+            runOn<gl::GpuSimulator>(withWeights(test::atlasSession(atlas), five), start, 60);
+        EXPECT_GT(test::maxAbsDifference(plain, gpu), 1e-3f);
+    }
+}
+
+TEST(AtlasGpu, NinePointWeightsConserveTheAreaWeightedAmount) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    const AtlasWeights weights = test::symmetricNinePointWeights(*atlas, 9);
+    const Session s = withWeights(test::pureDiffusionSession(atlas), weights);
+    const State start = test::randomUsedState(*atlas, 3);
+    const State end = runOn<gl::GpuSimulator>(s, start, 200);
+    const double before = test::areaWeightedSum(start, *atlas, weights, 0);
+    EXPECT_NEAR(test::areaWeightedSum(end, *atlas, weights, 0), before, 1e-5 * before);
+    EXPECT_GT(test::maxAbsDifference(end, start), 0.05f) << "nothing diffused";
+}
+
 TEST(AtlasGpu, SymmetricWeightsConserveTheAreaWeightedAmount) {
     auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
     const AtlasWeights weights = test::symmetricWeights(*atlas, 9);

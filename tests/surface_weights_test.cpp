@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "core/base/errors.hpp"
+#include "core/domain/atlas_diagonals.hpp"
 #include "core/mesh/mesh_samples.hpp"
 #include "core/surface/surface_weights.hpp"
 #include "core/surface/tile_builder.hpp"
@@ -77,18 +78,22 @@ TriangleMesh equilateralSheet(int m) {
 // the stability limit. Returns the steps taken to reach time `time`.
 int diffuse(const SurfaceTiles& tiles, const AtlasWeights& w, std::vector<double>& u, double time) {
     const Atlas& atlas = *tiles.atlas;
-    double maxSum = 0;
-    for (const auto& c : w.coefficients)
-        maxSum = std::max(maxSum, double(c[0]) + c[1] + c[2] + c[3]);
+    const double maxSum = maxCoefficientSum(w);
     const int steps = int(std::ceil(time / (0.4 / maxSum)));
     const double dt = time / steps;
     const auto& nb = atlas.neighbours();
+    // The weights' diagonals (the 9-point stencil), if any: one order serves
+    // (AtlasWeights).
+    const auto diagonals = atlasDiagonals(atlas);
     std::vector<double> next(u.size());
     for (int s = 0; s < steps; ++s) {
         for (std::size_t i = 0; i < u.size(); ++i) {
             double lap = 0;
             for (int d = 0; d < 4; ++d)
                 lap += double(w.coefficients[i][d]) * (u[nb[i][d]] - u[i]);
+            if (w.hasDiagonals())
+                for (int d = 0; d < 4; ++d)
+                    lap += double(w.diagonal[i][d]) * (u[diagonals[i][d]] - u[i]);
             next[i] = u[i] + dt * lap;
         }
         u.swap(next);

@@ -201,7 +201,7 @@ CpuSimulator::CpuSimulator(const Session& session)
             m_borderRows.push_back(
                 std::size_t(std::lower_bound(border.begin(), border.end(), atlas->cellAt(0, y)) -
                             border.begin()));
-        if (m_k.op.form == DiffusionOperator::Form::Laplacian9)
+        if (m_k.op.form == DiffusionOperator::Form::Laplacian9 || m_k.crossWeighted())
             m_diagonals = atlasDiagonals(*atlas);
     }
     pickKernels();
@@ -275,11 +275,27 @@ void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil,
         const float *cpx = planes + start, *cpy = planes + cells + start;
         const float *cmx = planes + 2 * cells + start, *cmy = planes + 3 * cells + start;
         out[0] = out[w - 1] = 0.0f; // border or unused: replaced below, or restored
+        if (m_k.crossWeighted()) {
+            const float* k = m_k.diagonalPlanes->data() + start;
+            const float *kmm = k, *kpm = k + cells, *kmp = k + 2 * cells, *kpp = k + 3 * cells;
 #pragma omp simd
-        for (int x = 1; x < w - 1; ++x) {
-            const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
-            const float sum = ((a + b) + d) + e;
-            out[x] = ((a * row[x - 1] + b * row[x + 1]) + d * up[x]) + e * down[x] - sum * row[x];
+            for (int x = 1; x < w - 1; ++x) {
+                const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
+                const float sum = (((a + b) + d) + e) + ((kmm[x] + kpm[x]) + (kmp[x] + kpp[x]));
+                const float sides =
+                    (((a * row[x - 1] + b * row[x + 1]) + d * up[x]) + e * down[x]) +
+                    ((kmm[x] * up[x - 1] + kpm[x] * up[x + 1]) +
+                     (kmp[x] * down[x - 1] + kpp[x] * down[x + 1]));
+                out[x] = sides - sum * row[x];
+            }
+        } else {
+#pragma omp simd
+            for (int x = 1; x < w - 1; ++x) {
+                const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
+                const float sum = ((a + b) + d) + e;
+                out[x] =
+                    ((a * row[x - 1] + b * row[x + 1]) + d * up[x]) + e * down[x] - sum * row[x];
+            }
         }
     } else {
         laplacianRow(up, row, down, out, w, EdgeMode::Clamped, stencil);
@@ -298,9 +314,17 @@ float CpuSimulator::atlasLaplacian(const float* plane, std::uint32_t cell, Stenc
         const float* planes = m_k.weightPlanes->data();
         const float b = planes[cell], e = planes[cells + cell];
         const float a = planes[2 * cells + cell], d = planes[3 * cells + cell];
-        const float sum = ((a + b) + d) + e;
-        return ((a * plane[n[2]] + b * plane[n[0]]) + d * plane[n[3]]) + e * plane[n[1]] -
-               sum * plane[cell];
+        float sum = ((a + b) + d) + e;
+        float sides = ((a * plane[n[2]] + b * plane[n[0]]) + d * plane[n[3]]) + e * plane[n[1]];
+        if (m_k.crossWeighted()) {
+            // Non-zero only where both orders reach one texel: order 0 serves.
+            const float* k = m_k.diagonalPlanes->data() + cell;
+            const std::array<std::uint32_t, 8>& g = m_diagonals[cell];
+            const float k0 = k[0], k1 = k[cells], k2 = k[2 * cells], k3 = k[3 * cells];
+            sum += (k0 + k1) + (k2 + k3);
+            sides += (k0 * plane[g[0]] + k1 * plane[g[1]]) + (k2 * plane[g[2]] + k3 * plane[g[3]]);
+        }
+        return sides - sum * plane[cell];
     }
     // The interior loop's order: -x, +x, then the two vertical neighbours.
     const float sides = plane[n[2]] + plane[n[0]] + plane[n[3]] + plane[n[1]];

@@ -18,6 +18,9 @@ struct SurfaceWeightOptions {
     // Per atlas cell (cellCount() entries) or null: a factor on the feature
     // size; the diffusion rate scales with its square (curvatureScale).
     const std::vector<float>* featureScale = nullptr;
+    // With metric correction: the 9-point stencil's cross term (AtlasWeights::
+    // diagonal), isotropic on sheared texels. Off: the 5-point weights only.
+    bool crossTerm = true;
 };
 
 // Per-texel weights of the 5-point Laplacian on the tiled surface (the
