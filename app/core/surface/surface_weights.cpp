@@ -15,6 +15,13 @@ namespace {
 // The cross term's cap, a fraction of the smaller axial conductance (see the
 // derivation in surfaceWeights): every axis link keeps at least a tenth of it.
 constexpr double kCrossCap = 0.9;
+// A texel's weight sum with the cross term is held within this factor of its
+// 5-point sum, and within the surface's largest 5-point sum or this factor of
+// the median one (see surfaceWeights).
+// Measured on the sample meshes (surface_curvature_spots_holes, 4x4 tiles):
+// the substeps stay 22 (holes), 11 (torus), 16 (blob, 15 without the cross
+// term) and 3 (sphere, 2 without).
+constexpr double kCrossGrowth = 2.0;
 
 double median(std::vector<double> v) {
     if (v.empty())
@@ -113,11 +120,24 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
     // (skinny simplified triangles): monotone still.
     // Where a texel lacks one of the two diagonals (a tile corner of valence != 4 on the
     // diagonal's side, an open edge; diagonalMirrors), it keeps the trace-2 5-point
-    // weights: a one-texel defect at those corners. Pair fluxes average the two texels'
-    // wishes, as the axis links' widths do: the axis flux is (l_i + l_j) / 2 / d_ij with
-    // l = (K_uu - |K_uv|) |Ju| (for a u-link), which is the 5-point width |Jv| on an
-    // orthogonal texel, and the diagonal flux (kappa_i + kappa_j) / 2.
-    std::vector<double> kappa(cells, 0.0); // |K_uv| (capped); 0: the 5-point weights
+    // weights: a one-texel defect at those corners.
+    // The time step: a sheared texel's weights grow as 1 / sin(angle) (the 5-point's
+    // shrink as sin(angle)), and the explicit step's limit is set by the largest
+    // weight sum on the surface, often a squeezed texel at the floors. So a texel's
+    // sum with the cross term (its own wishes, before the pair averages) is held
+    // within kCrossGrowth times its 5-point sum (an angle below 33 degrees on a texel
+    // of equal sides would exceed it; 45 degrees needs 1.29, 60 degrees 1) and within
+    // the surface's budget: its largest 5-point sum, or kCrossGrowth times the median
+    // one if more (a uniformly sheared sheet must pay for its exact operator).
+    // Where the full 9-point exceeds that, the texel's stencil is the blend
+    // (1 - t) 5-point + t 9-point with the largest t that fits: monotone and
+    // consistent still, with the 5-point's anisotropy in proportion to 1 - t.
+    // Pair fluxes average the two texels' wishes, as the axis links' widths do: the
+    // axis flux is (l_i + l_j) / 2 / d_ij with l = (1 - t) width + t (K_uu - |K_uv|) |Ju|
+    // for a u-link ((K_uu - |K_uv|) |Ju| is the 5-point width |Jv| on an orthogonal
+    // texel), and the diagonal flux (t_i |K_uv|_i + t_j |K_uv|_j) / 2.
+    std::vector<double> kappa(cells, 0.0); // t |K_uv| (|K_uv| capped); 0: the 5-point weights
+    std::vector<double> blend(cells, 0.0); // t
     std::vector<std::array<double, 2>> axis(cells, {0.0, 0.0}); // K_uu, K_vv when kappa > 0
     std::vector<std::array<std::uint32_t, 8>> diagonals;
     std::vector<std::array<int, 4>> mirrors;
@@ -125,6 +145,18 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
     if (cross) {
         diagonals = atlasDiagonals(atlas);
         mirrors = diagonalMirrors(atlas, diagonals);
+        // Per texel, the 5-point coefficient sum it asks for: 2 (1 / lu^2 + 1 / lv^2).
+        const auto sum5 = [&](std::uint32_t i) {
+            return 2.0 / (length(i, 0) * length(i, 0)) + 2.0 / (length(i, 1) * length(i, 1));
+        };
+        double budget = 0;
+        std::vector<double> sums;
+        for (std::uint32_t i = 0; i < cells; ++i)
+            if (atlas.used(i)) {
+                sums.push_back(sum5(i));
+                budget = std::max(budget, sums.back());
+            }
+        budget = std::max(budget, kCrossGrowth * median(sums));
         for (std::uint32_t i = 0; i < cells; ++i) {
             if (!atlas.used(i))
                 continue;
@@ -142,8 +174,14 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
                 return back >= 0 &&
                        mirrors[diagonals[i][std::size_t(slot)]][std::size_t(back)] == slot;
             };
-            if (k > 0 && paired(s0) && paired(s1)) {
-                kappa[i] = k;
+            if (!(k > 0 && paired(s0) && paired(s1)))
+                continue;
+            const double five = sum5(i), nine = (2 * (kuu + kvv) - 2 * k) / a;
+            const double limit = std::min(kCrossGrowth * five, budget);
+            const double t = nine <= limit ? 1.0 : (limit - five) / (nine - five);
+            if (t > 0) {
+                blend[i] = t;
+                kappa[i] = t * k;
                 axis[i] = {kuu, kvv};
             }
         }
@@ -162,7 +200,8 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
     const auto face = [&](std::uint32_t c, int d) {
         if (kappa[c] == 0)
             return width(c, d);
-        return (axis[c][std::size_t(d % 2)] - kappa[c]) * length(c, d);
+        const double t = blend[c];
+        return (1 - t) * width(c, d) + (t * axis[c][std::size_t(d % 2)] - kappa[c]) * length(c, d);
     };
 
     for (std::uint32_t i = 0; i < cells; ++i) {
