@@ -74,10 +74,10 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
                                   ? std::max(double(tiles.texelArea[c]) * scale * scale, minArea)
                                   : meanArea);
 
-    // The width of texel c across a step in direction d of its own frame, in model units:
-    // its area over its length along the step (|Jv| for a u-step when the frame is
-    // orthogonal; less on a sheared texel, which keeps the stencil's spread rate that of
-    // the surface: trace 2 of its effective diffusion tensor, as on a square grid).
+    // The length of texel c along a step in direction d of its own frame, and its width
+    // across the step, in model units: its area over its length along the step (|Jv| for a u-step
+    // when the frame is orthogonal; less on a sheared texel, which keeps the stencil's spread rate
+    // that of the surface: trace 2 of its effective diffusion tensor, as on a square grid).
     const auto length = [&](std::uint32_t c, int d) {
         const Eigen::Vector3f& along = (d % 2 == 0) ? tiles.jacobianU[c] : tiles.jacobianV[c];
         return std::max(double(along.norm()) * scale, minDistance);
