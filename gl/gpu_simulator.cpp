@@ -187,10 +187,17 @@ GpuSimulator::GpuSimulator(const Session& session)
         if (const AtlasWeights* weights = m_k.domain.atlasWeights()) {
             m_weights = Texture2D(atlas->width(), atlas->height(), GL_RGBA32F);
             m_weights.uploadRgba(coefficientTexels(*weights));
+            if (weights->hasDiagonals()) {
+                m_cross = Texture2D(atlas->width(), atlas->height(), GL_RGBA32F);
+                m_cross.uploadRgba(diagonalTexels(*weights));
+            }
         }
-        if (op.form == DiffusionOperator::Form::Laplacian9) {
+        if (op.form == DiffusionOperator::Form::Laplacian9 || m_k.crossWeighted()) {
+            // The weights' diagonals are non-zero only where both orders agree:
+            // the cross term reads order 0 alone.
             const auto diagonals = atlasDiagonals(*atlas);
-            for (int order = 0; order < 2; ++order) {
+            const int orders = op.form == DiffusionOperator::Form::Laplacian9 ? 2 : 1;
+            for (int order = 0; order < orders; ++order) {
                 m_diagonals[order] = Texture2D(atlas->width(), atlas->height(), GL_RGBA32UI);
                 m_diagonals[order].uploadRgbaUint(packedDiagonals(*atlas, diagonals, order));
             }
@@ -261,6 +268,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         defines.push_back("ATLAS");
     if (m_k.weighted())
         defines.push_back("ATLAS_WEIGHTS");
+    if (m_k.crossWeighted())
+        defines.push_back("ATLAS_CROSS");
     if (pass)
         defines.push_back(pass);
     if (!m_frozenMask.empty())
@@ -284,6 +293,7 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         glUniform1i(program.uniform("uDiagonals0"), kDiagonalUnits[0]);
         glUniform1i(program.uniform("uDiagonals1"), kDiagonalUnits[1]);
         glUniform1i(program.uniform("uWeights"), kWeightsUnit);
+        glUniform1i(program.uniform("uCross"), kCrossUnit);
         glUniform3i(program.uniform("uAtlas"), atlas->tileSize(), atlas->tilesPerRow(),
                     atlas->tileCount());
     }
@@ -307,6 +317,8 @@ void GpuSimulator::bindAuxiliaryTextures() const {
         m_connectivity.bind(kConnectivityUnit);
     if (m_weights.id())
         m_weights.bind(kWeightsUnit);
+    if (m_cross.id())
+        m_cross.bind(kCrossUnit);
     for (int order = 0; order < 2; ++order)
         if (m_diagonals[order].id())
             m_diagonals[order].bind(kDiagonalUnits[order]);

@@ -18,6 +18,7 @@ constexpr int kConnectivityUnit = 9;       // atlas domains: the RGBA32UI connec
 constexpr int kDiagonalUnits[] = {10, 11}; // 9-point on an atlas: diagonals, both orders
 constexpr int kBrushMaskUnit = 12;         // brush passes: the region's weights and noise
 constexpr int kWeightsUnit = 13;           // weighted atlases: 4 coefficients per texel (RGBA32F)
+constexpr int kCrossUnit = 14; // weights with diagonals: 4 diagonal coefficients (RGBA32F)
 
 // Two sets of `count` same-size float textures, each set behind one
 // framebuffer (multiple render targets); each pass samples the current set
@@ -125,6 +126,7 @@ private:
     Texture2D m_connectivity; // atlas domains: 4 neighbours per texel, x | y << 16
     Texture2D m_diagonals[2]; // 9-point on an atlas: the diagonals, x then y / y then x
     Texture2D m_weights;      // weighted atlases: +x, +y, -x, -y coefficients per texel
+    Texture2D m_cross;        // weights with diagonals: their 4 coefficients per texel
     std::vector<std::uint8_t> m_frozenMask;
     Program m_brushProgram; // built on the first chemical brush
     // Localized runs: the active tiles' rectangles (runs of consecutive tiles

@@ -22,6 +22,11 @@
 // uWeights (RGBA32F: the +x, +y, -x, -y coefficients, core/domain/
 // atlas_weights.hpp): rate * (sum_d c_d u_d - (sum_d c_d) u), interior texels
 // too, summed in the CPU's order (StepConstants::weightPlanes).
+// ATLAS_CROSS (with ATLAS_WEIGHTS) adds the weights' diagonals: uCross (RGBA32F:
+// the (-x,-y), (+x,-y), (-x,+y), (+x,+y) coefficients), interior texels reading
+// the grid's diagonals, border texels uDiagonals0 (one order: a non-zero
+// coefficient has both orders reach the same texel), in the CPU's order
+// (StepConstants::diagonalPlanes).
 // The integrator is a second variant: (none) explicit Euler; RHS_PASS and
 // JACOBI_PASS the two passes of a semi-implicit step.
 // react() comes from the model's snippet, compiled in front of this file.
@@ -110,9 +115,14 @@ uniform ivec3 uAtlas; // texels per tile side, tiles per row, tile count
 #ifdef ATLAS_WEIGHTS
 uniform sampler2D uWeights; // +x, +y, -x, -y coefficients of this texel's links
 #endif
-#ifdef STENCIL_9
+#if defined(STENCIL_9) || defined(ATLAS_CROSS)
 uniform usampler2D uDiagonals0; // (-x,-y), (+x,-y), (-x,+y), (+x,+y), reached x then y
+#endif
+#ifdef STENCIL_9
 uniform usampler2D uDiagonals1; // the same, reached y then x
+#endif
+#ifdef ATLAS_CROSS
+uniform sampler2D uCross; // the diagonal coefficients, uDiagonals0's order
 #endif
 bool gAtlasBorder;    // this fragment's texel is on its tile's border ring
 ivec2 unpackTexel(uint address) {
@@ -185,6 +195,24 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
     }
     float wsum = ((w.z + w.x) + w.w) + w.y;
     vec4 sides = ((w.z * l + w.x * r) + w.w * d) + w.y * u;
+#ifdef ATLAS_CROSS
+    vec4 k = texelFetch(uCross, ivec2(gl_FragCoord.xy), 0);
+    vec4 mm, pm, mp, pp;
+    if (gAtlasBorder) {
+        uvec4 g = texelFetch(uDiagonals0, ivec2(gl_FragCoord.xy), 0);
+        mm = texelFetch(state, unpackTexel(g.x), 0);
+        pm = texelFetch(state, unpackTexel(g.y), 0);
+        mp = texelFetch(state, unpackTexel(g.z), 0);
+        pp = texelFetch(state, unpackTexel(g.w), 0);
+    } else {
+        mm = AT(-1, -1);
+        pm = AT(1, -1);
+        mp = AT(-1, 1);
+        pp = AT(1, 1);
+    }
+    wsum += (k.x + k.y) + (k.z + k.w);
+    sides += (k.x * mm + k.y * pm) + (k.z * mp + k.w * pp);
+#endif
 #elif defined(ATLAS)
     // The CPU's order: -x, +x, -y, +y.
     vec4 sides;

@@ -2,6 +2,8 @@
 
 #include <random>
 
+#include "core/domain/atlas_diagonals.hpp"
+
 namespace morphogen::test {
 
 Session atlasSession(std::shared_ptr<const Atlas> atlas, Stencil stencil) {
@@ -70,6 +72,29 @@ AtlasWeights symmetricWeights(const Atlas& atlas, unsigned seed) {
             done[s.cell][std::size_t(s.back)] = true;
         }
     }
+    return w;
+}
+
+AtlasWeights symmetricNinePointWeights(const Atlas& atlas, unsigned seed) {
+    AtlasWeights w = symmetricWeights(atlas, seed);
+    for (auto& c : w.coefficients)
+        for (float& v : c)
+            v *= 0.5f;
+    std::mt19937 random(seed + 1);
+    std::uniform_real_distribution<float> conductance(0.3f, 0.5f);
+    const auto d = atlasDiagonals(atlas);
+    const auto mirror = diagonalMirrors(atlas, d);
+    w.diagonal.assign(atlas.cellCount(), {0.0f, 0.0f, 0.0f, 0.0f});
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+        for (std::size_t s = 0; s < 4; ++s) {
+            const std::uint32_t j = d[i][s];
+            const int back = mirror[i][s];
+            if (back < 0 || j <= i)
+                continue;
+            const float k = conductance(random);
+            w.diagonal[i][s] = k / w.area[i];
+            w.diagonal[j][std::size_t(back)] = k / w.area[j];
+        }
     return w;
 }
 

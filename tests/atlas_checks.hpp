@@ -35,6 +35,10 @@ std::vector<std::uint32_t> cornerTexels(const Atlas& atlas, int tile);
 // up to float rounding, and every coefficient is at most 1.25: sums <= 5, in
 // gs_coral's explicit limit). Zero-flux links (a step that stays put) get 1.
 AtlasWeights symmetricWeights(const Atlas& atlas, unsigned seed);
+// symmetricWeights with a 9-point stencil: the axis coefficients halved and a
+// random conductance in [0.3, 0.5] on every diagonal pair that has one
+// (diagonalMirrors), each side's coefficient K / its area (sums <= 5 still).
+AtlasWeights symmetricNinePointWeights(const Atlas& atlas, unsigned seed);
 
 // Sum of area * chemical c over the used texels, in double.
 double areaWeightedSum(const State& s, const Atlas& atlas, const AtlasWeights& weights, int c);

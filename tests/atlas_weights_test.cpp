@@ -8,6 +8,7 @@
 
 #include "atlas_checks.hpp"
 #include "core/base/errors.hpp"
+#include "core/domain/atlas_diagonals.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/operators/stability.hpp"
 #include "core/sim/cpu_simulator.hpp"
@@ -174,4 +175,135 @@ TEST(AtlasWeightsCpu, OperatorsAnAtlasCannotRunAreStillRefusedWithWeights) {
     Session implicit = weighted(test::atlasSession(atlas), unit);
     implicit.integrator = Integrator::SemiImplicit;
     EXPECT_THROW(CpuSimulator{implicit}, InputError);
+}
+
+// Weights with diagonals (the 9-point stencil of sheared surface texels).
+
+namespace {
+
+// One explicit step of pure diffusion of u (gs_coral with F = k = 0 and v = 0:
+// no reaction on u), in double, with the weights' 9 points.
+std::vector<double> referenceStep(const Atlas& atlas, const AtlasWeights& w, const State& start,
+                                  double rate, double dt) {
+    const auto& n = atlas.neighbours();
+    const auto d = atlasDiagonals(atlas);
+    const float* u = start.plane(0);
+    std::vector<double> out(atlas.cellCount());
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i) {
+        double lap = 0;
+        for (std::size_t k = 0; k < 4; ++k) {
+            lap += double(w.coefficients[i][k]) * (double(u[n[i][k]]) - u[i]);
+            lap += double(w.diagonal[i][k]) * (double(u[d[i][k]]) - u[i]);
+        }
+        out[i] = atlas.used(i) ? u[i] + dt * rate * lap : u[i];
+    }
+    return out;
+}
+
+} // namespace
+
+// Every texel, interior (the fused rows) and border (the index arrays), steps
+// by the 9-point weighted Laplacian: float rounding off a double reference.
+// The generic row path (six-chemical meinhardt) and the index path of active
+// tiles (every tile active) agree with the fused/whole-texture run.
+TEST(AtlasWeightsCpu, NinePointWeightsReachEveryTexelOnEveryPath) {
+    for (auto atlas : {std::make_shared<const Atlas>(Atlas::cube(6)),
+                       std::make_shared<const Atlas>(Atlas::rotatedTiles(6))}) {
+        auto weights =
+            std::make_shared<const AtlasWeights>(test::symmetricNinePointWeights(*atlas, 4));
+        const Session s = weighted(test::pureDiffusionSession(atlas), weights);
+        const State start = test::randomUsedState(*atlas, 8);
+        const State one = runOn(s, start, 1);
+        const std::vector<double> ref =
+            referenceStep(*atlas, *weights, start, s.params.at("Du"), s.dt);
+        double worst = 0, moved = 0;
+        for (std::uint32_t i = 0; i < atlas->cellCount(); ++i) {
+            worst = std::max(worst, std::abs(double(one.plane(0)[i]) - ref[i]));
+            moved = std::max(moved, std::abs(ref[i] - double(start.plane(0)[i])));
+        }
+        EXPECT_LT(worst, 1e-6);
+        EXPECT_GT(moved, 0.05);
+        // Without the diagonals the step differs by far more than rounding.
+        AtlasWeights noDiagonals = *weights;
+        noDiagonals.diagonal.clear();
+        const State five =
+            runOn(weighted(s, std::make_shared<const AtlasWeights>(noDiagonals)), start, 1);
+        EXPECT_GT(test::maxAbsDifference(five, one), 1e-2f);
+
+        for (const char* preset : {"gs_coral", "meinhardt_random_stripes"}) {
+            SCOPED_TRACE(preset);
+            Session p = loadPreset(preset);
+            useAtlas(p, atlas, weights);
+            const State from = startOf(p, 5);
+            const State whole = runOn(p, from, 40);
+            CpuSimulator tiles(p);
+            std::vector<int> all(std::size_t(atlas->tileCount()));
+            for (int t = 0; t < atlas->tileCount(); ++t)
+                all[std::size_t(t)] = t;
+            tiles.setActiveTiles(all);
+            tiles.setState(from);
+            tiles.run(40);
+            EXPECT_LT(test::maxAbsDifference(whole, tiles.state()), 1e-5f);
+            EXPECT_GT(test::maxAbsDifference(whole, from), 1e-4f) << "nothing happened";
+        }
+    }
+}
+
+TEST(AtlasWeightsCpu, NinePointWeightsConserveTheAreaWeightedAmount) {
+    for (auto atlas : {std::make_shared<const Atlas>(Atlas::cube(8)),
+                       std::make_shared<const Atlas>(Atlas::rotatedTiles(8))}) {
+        auto weights =
+            std::make_shared<const AtlasWeights>(test::symmetricNinePointWeights(*atlas, 17));
+        const Session s = weighted(test::pureDiffusionSession(atlas), weights);
+        const State start = test::randomUsedState(*atlas, 3);
+        const State end = runOn(s, start, 200);
+        const double before = test::areaWeightedSum(start, *atlas, *weights, 0);
+        EXPECT_NEAR(test::areaWeightedSum(end, *atlas, *weights, 0), before, 1e-5 * before);
+        EXPECT_GT(test::maxAbsDifference(end, start), 0.05f) << "nothing diffused";
+    }
+}
+
+TEST(AtlasWeightsCpu, NinePointWeightsRunWhateverTheStencilAndCountInTheBound) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    AtlasWeights w = uniformAtlasWeights(*atlas, 0.5f);
+    w.diagonal.assign(atlas->cellCount(), {0.0f, 0.0f, 0.0f, 0.0f});
+    const std::uint32_t c = atlas->tileCell(2, 3, 3); // interior: every diagonal is one texel
+    w.diagonal[c] = {1.0f, 2.0f, 0.5f, 1.5f};         // sum 2 + 5 = 7
+    EXPECT_FLOAT_EQ(maxCoefficientSum(w), 7.0f);
+    EXPECT_EQ(weightedSubsteps(w), 2);
+    auto shared = std::make_shared<const AtlasWeights>(w);
+    const Session five = weighted(test::atlasSession(atlas, Stencil::FivePoint), shared);
+    const Session nine = weighted(test::atlasSession(atlas, Stencil::NinePoint), shared);
+    EXPECT_FALSE(StepConstants::fromSession(nine).nineToFivePoint);
+    EXPECT_TRUE(StepConstants::fromSession(nine).crossWeighted());
+    EXPECT_NE(describePlan(nine).find("the weights' 9-point stencil runs"), std::string::npos)
+        << describePlan(nine);
+    const State start = startOf(five, 2);
+    EXPECT_EQ(test::maxAbsDifference(runOn(five, start, 10), runOn(nine, start, 10)), 0.0f);
+}
+
+TEST(AtlasWeightsCpu, DiagonalWeightsThatDoNotFitAreRefused) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(4));
+    const auto refused = [&](const AtlasWeights& w, const std::string& message) {
+        try {
+            checkAtlasWeights(*atlas, w);
+            ADD_FAILURE() << "accepted; expected: " << message;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    };
+    AtlasWeights w = uniformAtlasWeights(*atlas);
+    w.diagonal.assign(atlas->cellCount() - 1, {0.0f, 0.0f, 0.0f, 0.0f});
+    refused(w, "diagonal entries for an atlas of");
+    w.diagonal.assign(atlas->cellCount(), {0.0f, 0.0f, 0.0f, 0.0f});
+    checkAtlasWeights(*atlas, w);
+    w.diagonal[atlas->tileCell(1, 1, 1)][2] = -0.5f;
+    refused(w, "negative or non-finite diagonal coefficient");
+    // A cube corner (valence 3): the corner texel's diagonal towards it is two texels.
+    w.diagonal.assign(atlas->cellCount(), {0.0f, 0.0f, 0.0f, 0.0f});
+    const std::uint32_t corner = atlas->cornerCell(0, 0);
+    const auto d = atlasDiagonals(*atlas);
+    ASSERT_NE(d[corner][0], d[corner][4]);
+    w.diagonal[corner][0] = 1.0f;
+    refused(w, "towards an irregular tile corner");
 }

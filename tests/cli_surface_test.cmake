@@ -64,6 +64,25 @@ if(corrected OR NOT by STREQUAL "mean_curvature" OR NOT frames EQUAL 3)
   message(SEND_ERROR "turn.json: metric_correction ${corrected}, scale.by ${by}, turntable ${frames}")
 endif()
 
+# The cross term (on by default) is recorded, and the plan says the weights'
+# 9-point stencil runs; --no-cross-term turns it off in both.
+string(JSON cross GET "${session}" surface cross_term)
+file(READ "${WORK}/sphere.json" first)
+string(JSON crossFirst GET "${first}" surface cross_term)
+if(NOT cross OR NOT crossFirst)
+  message(SEND_ERROR "cross_term: turn.json ${cross}, sphere.json ${crossFirst} (expected true)")
+endif()
+run(0 "the weights' 9-point stencil runs" render --mesh sample:sphere --preset turk_large_spots
+    ${small} --out cross.png)
+run(0 "" render --mesh sample:sphere --preset turk_large_spots ${small} --no-cross-term
+    --out plain.png)
+string(FIND "${last_stderr}" "9-point" at)
+file(READ "${WORK}/plain.json" session)
+string(JSON cross GET "${session}" surface cross_term)
+if(cross OR NOT at EQUAL -1)
+  message(SEND_ERROR "--no-cross-term: cross_term ${cross}, plan: ${last_stderr}")
+endif()
+
 # Bad surface input: exit 2, the flag, field or file named, nothing written.
 run(2 "--tile-size '2'" render --mesh sample:sphere --preset turk_large_spots --tile-size 2 --out bad.png)
 run(2 "--tiles '1'" render --mesh sample:sphere --preset turk_large_spots --tiles 1 --out bad.png)

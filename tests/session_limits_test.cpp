@@ -241,6 +241,7 @@ TEST(SessionLimits, SurfaceBlocksRoundTripAtTheirLimits) {
             {"tile_size", maximum ? kMaxSurfaceTileSize : kMinSurfaceTileSize},
             {"tiles", maximum ? kMaxSurfaceTiles : kMinSurfaceTiles},
             {"metric_correction", !maximum},
+            {"cross_term", maximum},
             {"scale",
              {{"by", "mean_curvature"}, {"strength", maximum ? kMaxSurfaceScaleStrength : 0.0}}},
             {"view",

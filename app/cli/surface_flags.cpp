@@ -51,6 +51,10 @@ void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
                  "diffuse as if every texel were the same square (features then grow where the "
                  "tiles are stretched)")
         ->group(group);
+    cmd.add_flag("--no-cross-term", f.noCrossTerm,
+                 "the metric-corrected diffusion without its 9-point cross term: the 5-point "
+                 "stencil, anisotropic on sheared tiles")
+        ->group(group);
     cmd.add_option("--curvature-scale", f.curvatureScale,
                    "shrink features where the mean curvature is high (strength, 0 = off; "
                    "size factor 1 / (1 + S |H| / median |H|))")
@@ -68,7 +72,7 @@ void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
 
 bool anySurfaceFlag(const SurfaceFlags& f) {
     return !f.mesh.empty() || !f.tileSize.empty() || !f.tiles.empty() || f.noMetricCorrection ||
-           !f.curvatureScale.empty() || !f.view.empty() || !f.resolution.empty() ||
+           f.noCrossTerm || !f.curvatureScale.empty() || !f.view.empty() || !f.resolution.empty() ||
            !f.turntable.empty();
 }
 
@@ -83,9 +87,10 @@ void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
     if (!anySurfaceFlag(f))
         return;
     if (!s.surface.active())
-        throw InputError("the surface flags (--tile-size, --tiles, --no-metric-correction, "
-                         "--curvature-scale, --view, --resolution, --turntable) need a mesh: "
-                         "give --mesh FILE");
+        throw InputError(
+            "the surface flags (--tile-size, --tiles, --no-metric-correction, "
+            "--no-cross-term, --curvature-scale, --view, --resolution, --turntable) need a mesh: "
+            "give --mesh FILE");
     SurfaceSpec& spec = s.surface;
     if (!f.tileSize.empty())
         spec.tileSize =
@@ -94,6 +99,8 @@ void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
         spec.tiles = autoOrInteger("--tiles", f.tiles, kMinSurfaceTiles, kMaxSurfaceTiles);
     if (f.noMetricCorrection)
         spec.metricCorrection = false;
+    if (f.noCrossTerm)
+        spec.crossTerm = false;
     if (!f.curvatureScale.empty()) {
         spec.scaleStrength =
             numberFlag("--curvature-scale", f.curvatureScale, 0, kMaxSurfaceScaleStrength);

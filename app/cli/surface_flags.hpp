@@ -16,6 +16,7 @@ struct SurfaceFlags {
     std::string tileSize;
     std::string tiles;
     bool noMetricCorrection = false;
+    bool noCrossTerm = false;
     std::string curvatureScale;
     std::string view;
     std::string resolution;

@@ -29,4 +29,34 @@ packedDiagonals(const Atlas& atlas, const std::vector<std::array<std::uint32_t, 
     return map;
 }
 
+std::vector<std::array<int, 4>>
+diagonalMirrors(const Atlas& atlas, const std::vector<std::array<std::uint32_t, 8>>& d) {
+    const auto& n = atlas.neighbours();
+    const auto single = [&](std::uint32_t cell, int s) {
+        const std::uint32_t j = d[cell][std::size_t(s)];
+        if (!atlas.used(cell) || j != d[cell][std::size_t(s + 4)] || j == cell)
+            return false;
+        for (std::uint32_t k : n[cell])
+            if (k == j)
+                return false;
+        return true;
+    };
+    std::vector<std::array<int, 4>> mirror(d.size(), {-1, -1, -1, -1});
+    for (std::uint32_t cell = 0; cell < d.size(); ++cell)
+        for (int s = 0; s < 4; ++s) {
+            if (!single(cell, s))
+                continue;
+            const std::uint32_t j = d[cell][std::size_t(s)];
+            int back = -1, count = 0;
+            for (int t = 0; t < 4; ++t)
+                if (single(j, t) && d[j][std::size_t(t)] == cell) {
+                    back = t;
+                    ++count;
+                }
+            if (count == 1)
+                mirror[cell][std::size_t(s)] = back;
+        }
+    return mirror;
+}
+
 } // namespace morphogen

@@ -28,4 +28,13 @@ std::vector<std::array<std::uint32_t, 8>> atlasDiagonals(const Atlas& atlas);
 std::vector<std::uint32_t>
 packedDiagonals(const Atlas& atlas, const std::vector<std::array<std::uint32_t, 8>>& d, int order);
 
+// Per cell and diagonal slot s (0..3, the order above), the slot of the
+// diagonal texel j that leads back to the cell, or -1 where the slot is no
+// single distinct diagonal: the two orders disagree (an irregular corner),
+// it ends on the cell itself or on one of its four direct neighbours (an
+// open edge), or j has not exactly one such slot back. What a weighted
+// 9-point stencil needs to give each diagonal pair one flux.
+std::vector<std::array<int, 4>> diagonalMirrors(const Atlas& atlas,
+                                                const std::vector<std::array<std::uint32_t, 8>>& d);
+
 } // namespace morphogen

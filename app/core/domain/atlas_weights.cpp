@@ -6,11 +6,16 @@
 
 #include "core/base/errors.hpp"
 #include "core/domain/atlas.hpp"
+#include "core/domain/atlas_diagonals.hpp"
 
 namespace morphogen {
 
 void checkAtlasWeightSizes(const Atlas& atlas, const AtlasWeights& weights) {
     const std::size_t cells = atlas.cellCount();
+    if (weights.hasDiagonals() && weights.diagonal.size() != cells)
+        throw InputError("atlas weights: " + std::to_string(weights.diagonal.size()) +
+                         " diagonal entries for an atlas of " + std::to_string(cells) +
+                         " cells (accepted: none, or one per atlas cell)");
     if (weights.coefficients.size() != cells || weights.area.size() != cells)
         throw InputError("atlas weights: " + std::to_string(weights.coefficients.size()) +
                          " coefficient and " + std::to_string(weights.area.size()) +
@@ -32,6 +37,21 @@ void checkAtlasWeights(const Atlas& atlas, const AtlasWeights& weights) {
                              ") has a negative or non-finite coefficient or area (accepted: "
                              "finite values >= 0)");
     }
+    if (!weights.hasDiagonals())
+        return;
+    const auto d = atlasDiagonals(atlas);
+    for (std::size_t i = 0; i < cells; ++i)
+        for (std::size_t s = 0; s < 4; ++s) {
+            const float k = weights.diagonal[i][s];
+            if (bad(k))
+                throw InputError("atlas weights: cell " + std::to_string(i) +
+                                 " has a negative or non-finite diagonal coefficient (accepted: "
+                                 "finite values >= 0)");
+            if (k != 0.0f && d[i][s] != d[i][s + 4])
+                throw InputError("atlas weights: cell " + std::to_string(i) +
+                                 " has a diagonal coefficient towards an irregular tile corner, "
+                                 "where the diagonal is not one texel (accepted there: 0)");
+        }
 }
 
 AtlasWeights uniformAtlasWeights(const Atlas& atlas, float coefficient) {
@@ -48,8 +68,15 @@ AtlasWeights uniformAtlasWeights(const Atlas& atlas, float coefficient) {
 
 float maxCoefficientSum(const AtlasWeights& weights) {
     float worst = 0.0f;
-    for (const auto& c : weights.coefficients)
-        worst = std::max(worst, ((c[2] + c[0]) + c[3]) + c[1]);
+    for (std::size_t i = 0; i < weights.coefficients.size(); ++i) {
+        const auto& c = weights.coefficients[i];
+        float sum = ((c[2] + c[0]) + c[3]) + c[1];
+        if (weights.hasDiagonals()) {
+            const auto& k = weights.diagonal[i];
+            sum += (std::abs(k[0]) + std::abs(k[1])) + (std::abs(k[2]) + std::abs(k[3]));
+        }
+        worst = std::max(worst, sum);
+    }
     return worst;
 }
 
@@ -71,6 +98,23 @@ std::vector<float> coefficientTexels(const AtlasWeights& weights) {
     std::vector<float> texels(4 * weights.coefficients.size());
     for (std::size_t i = 0; i < weights.coefficients.size(); ++i)
         std::copy(weights.coefficients[i].begin(), weights.coefficients[i].end(),
+                  texels.begin() + std::ptrdiff_t(4 * i));
+    return texels;
+}
+
+std::vector<float> diagonalPlanes(const AtlasWeights& weights) {
+    const std::size_t cells = weights.diagonal.size();
+    std::vector<float> planes(4 * cells);
+    for (std::size_t i = 0; i < cells; ++i)
+        for (std::size_t s = 0; s < 4; ++s)
+            planes[s * cells + i] = weights.diagonal[i][s];
+    return planes;
+}
+
+std::vector<float> diagonalTexels(const AtlasWeights& weights) {
+    std::vector<float> texels(4 * weights.diagonal.size());
+    for (std::size_t i = 0; i < weights.diagonal.size(); ++i)
+        std::copy(weights.diagonal[i].begin(), weights.diagonal[i].end(),
                   texels.begin() + std::ptrdiff_t(4 * i));
     return texels;
 }

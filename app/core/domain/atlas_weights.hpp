@@ -17,13 +17,34 @@ class Atlas;
 // (core/surface): the flux between i and its neighbour j is the same seen from
 // both sides, coefficients[i][d] * area[i] == coefficients[j][back] * area[j],
 // so diffusion conserves sum_i area[i] * u[i] (the amount on the surface).
+//
+// Optionally a 9-point stencil: `diagonal` adds, per texel, four links to its
+// diagonals (atlas_diagonals.hpp's slot order: (-x,-y), (+x,-y), (-x,+y),
+// (+x,+y) of i's frame, reached x then y):
+//
+//     lap(u)_i += sum over s of diagonal[i][s] * (u[diagonal(i, s)] - u[i])
+//
+// with the same pair symmetry (diagonal[i][s] * area[i] == diagonal[j][s'] *
+// area[j], s' j's slot that reaches i). A diagonal coefficient is non-zero only
+// where both orders of the walk reach the same texel (everywhere but at a tile
+// corner of valence != 4, see Atlas::walk), so one order's index map serves.
+// What it is for: the cross term of the Laplace-Beltrami operator on sheared
+// texels (core/surface/surface_weights.hpp).
 struct AtlasWeights {
     std::vector<std::array<float, 4>> coefficients; // per atlas cell; 0 for unused cells
     std::vector<float> area;                        // per atlas cell, units^2; 0 for unused cells
+    // Empty (the 5-point stencil) or per atlas cell; 0 for unused cells.
+    std::vector<std::array<float, 4>> diagonal;
+
+    bool hasDiagonals() const { return !diagonal.empty(); }
 };
 
 // Throws InputError unless `weights` fits `atlas`: one entry per atlas cell in
-// both vectors, every coefficient and area finite and >= 0.
+// both vectors (and in `diagonal` unless it is empty), every coefficient and
+// area finite and >= 0, and a diagonal coefficient non-zero only where the two
+// orders of its diagonal reach the same texel (see AtlasWeights). Non-negative
+// diagonals keep the stencil monotone (an M-matrix: no new extrema, so the
+// clamps stay inactive for pure diffusion) and maxCoefficientSum a plain sum.
 void checkAtlasWeights(const Atlas& atlas, const AtlasWeights& weights);
 // Only the sizes (constant time, for every Domain made from a session).
 void checkAtlasWeightSizes(const Atlas& atlas, const AtlasWeights& weights);
@@ -32,7 +53,8 @@ void checkAtlasWeightSizes(const Atlas& atlas, const AtlasWeights& weights);
 // the unweighted atlas.
 AtlasWeights uniformAtlasWeights(const Atlas& atlas, float coefficient = 1.0f);
 
-// max over texels of the sum of its four coefficients (4 on a unit grid). The
+// max over texels of the sum of its four coefficients plus its four diagonal
+// ones, if any (4 on a unit grid; absolute values, for safety). The
 // explicit step of pure diffusion is stable for dt * rate * maxCoefficientSum
 // <= 1, the unit grid's dt * rate * 4 <= 1 with 4 replaced by this sum
 // (Gershgorin: |lambda| <= 2 * rate * sum at the worst texel; the operator is
@@ -49,5 +71,11 @@ std::vector<float> coefficientPlanes(const AtlasWeights& weights);
 
 // The weights as RGBA per texel (+x, +y, -x, -y): the GPU's RGBA32F texture.
 std::vector<float> coefficientTexels(const AtlasWeights& weights);
+
+// The diagonal coefficients as four planes (slot order, as coefficientPlanes)
+// and as RGBA per texel (the GPU's second RGBA32F texture). Empty when the
+// weights have no diagonals.
+std::vector<float> diagonalPlanes(const AtlasWeights& weights);
+std::vector<float> diagonalTexels(const AtlasWeights& weights);
 
 } // namespace morphogen

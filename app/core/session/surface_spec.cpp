@@ -63,7 +63,8 @@ std::string surfaceScaleByNames() {
 
 SurfaceSpec surfaceSpecFromJson(const FieldReader& top, const nlohmann::json& block) {
     FieldReader reader(block, top.source(), "surface");
-    reader.rejectUnknown({"mesh", "tile_size", "tiles", "metric_correction", "scale", "view"});
+    reader.rejectUnknown(
+        {"mesh", "tile_size", "tiles", "metric_correction", "cross_term", "scale", "view"});
     SurfaceSpec spec;
     spec.mesh = reader.string("mesh", "");
     if (spec.mesh.empty())
@@ -82,6 +83,7 @@ SurfaceSpec surfaceSpecFromJson(const FieldReader& top, const nlohmann::json& bl
                                       std::to_string(kMaxSurfaceTiles));
     spec.tiles = int(tiles);
     spec.metricCorrection = reader.boolean("metric_correction", spec.metricCorrection);
+    spec.crossTerm = reader.boolean("cross_term", spec.crossTerm);
     if (const nlohmann::json* scale = reader.find("scale")) {
         FieldReader s(*scale, top.source(), "surface.scale");
         s.rejectUnknown({"by", "strength"});
@@ -99,6 +101,7 @@ nlohmann::json surfaceSpecToJson(const SurfaceSpec& spec) {
     j["tile_size"] = spec.tileSize;
     j["tiles"] = spec.tiles;
     j["metric_correction"] = spec.metricCorrection;
+    j["cross_term"] = spec.crossTerm;
     if (spec.scaleBy != SurfaceScaleBy::None)
         j["scale"] = {{"by", toString(spec.scaleBy)}, {"strength", spec.scaleStrength}};
     const SurfaceView& v = spec.view;

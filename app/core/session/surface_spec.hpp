@@ -47,6 +47,8 @@ struct SurfaceSpec {
     int tileSize = 0; // texels per tile side; 0: chosen from the pattern's scale
     int tiles = 0;    // tile budget; 0: automatic
     bool metricCorrection = true;
+    // With metricCorrection: the 9-point stencil's cross term (SurfaceWeightOptions).
+    bool crossTerm = true;
     SurfaceScaleBy scaleBy = SurfaceScaleBy::None;
     double scaleStrength = 1.0;
     SurfaceView view;

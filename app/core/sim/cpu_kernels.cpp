@@ -284,8 +284,10 @@ MORPHOGEN_VECTOR_CLONES void stepRows(const StepConstants& k, const State& in, S
 // coefficients streamed unit-stride from their planes. Columns 0 and w-1 and
 // the texture's outer rows hold only tile-border or unused texels, which the
 // caller redoes or restores, so the loop runs over columns 1..w-2 with the
-// rows above and below clamped.
-template <class Cell>
+// rows above and below clamped. Cross: the weights' diagonals too
+// (StepConstants::diagonalPlanes), an interior texel's diagonals being the
+// grid's.
+template <class Cell, bool Cross>
 MORPHOGEN_VECTOR_CLONES void stepRowsWeighted(const StepConstants& k, const State& in, State& out,
                                               int y0, int y1) {
     constexpr int n = Cell::kChemicals;
@@ -308,6 +310,18 @@ MORPHOGEN_VECTOR_CLONES void stepRowsWeighted(const StepConstants& k, const Stat
         const float* cpy = planes + cells + row;
         const float* cmx = planes + 2 * cells + row;
         const float* cmy = planes + 3 * cells + row;
+        // Diagonal planes (-x,-y), (+x,-y), (-x,+y), (+x,+y); unread without Cross.
+        const float* kmm = nullptr;
+        const float* kpm = nullptr;
+        const float* kmp = nullptr;
+        const float* kpp = nullptr;
+        if constexpr (Cross) {
+            const float* diagonals = k.diagonalPlanes->data();
+            kmm = diagonals + row;
+            kpm = diagonals + cells + row;
+            kmp = diagonals + 2 * cells + row;
+            kpp = diagonals + 3 * cells + row;
+        }
         const float* mid[n];
         const float* down[n];
         const float* up[n];
@@ -325,14 +339,24 @@ MORPHOGEN_VECTOR_CLONES void stepRowsWeighted(const StepConstants& k, const Stat
                 conc[c] = mid[c][x];
             cell.react(conc, dcdt);
             const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
-            const float sum = ((a + b) + d) + e;
+            float sum = ((a + b) + d) + e;
+            float k0 = 0.0f, k1 = 0.0f, k2 = 0.0f, k3 = 0.0f;
+            if constexpr (Cross) {
+                k0 = kmm[x];
+                k1 = kpm[x];
+                k2 = kmp[x];
+                k3 = kpp[x];
+                sum += (k0 + k1) + (k2 + k3);
+            }
 #pragma GCC unroll 4
             for (int c = 0; c < n; ++c) {
+                float sides =
+                    ((a * mid[c][x - 1] + b * mid[c][x + 1]) + d * down[c][x]) + e * up[c][x];
+                if constexpr (Cross)
+                    sides += (k0 * down[c][x - 1] + k1 * down[c][x + 1]) +
+                             (k2 * up[c][x - 1] + k3 * up[c][x + 1]);
                 const float diffusion =
-                    Cell::diffuses(c)
-                        ? rate[c] * (((a * mid[c][x - 1] + b * mid[c][x + 1]) + d * down[c][x]) +
-                                     e * up[c][x] - sum * conc[c])
-                        : 0.0f;
+                    Cell::diffuses(c) ? rate[c] * (sides - sum * conc[c]) : 0.0f;
                 next[c][x] = std::min(std::max(conc[c] + dt * (dcdt[c] + diffusion), lo[c]), hi[c]);
             }
         };
@@ -495,7 +519,8 @@ StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants
                 for (int c = 0; c < Cell::kChemicals; ++c)
                     if ((k.op.rates[std::size_t(c)] == 0.0f) == Cell::diffuses(c))
                         return nullptr;
-                return &stepRowsWeighted<Cell>;
+                return k.crossWeighted() ? &stepRowsWeighted<Cell, true>
+                                         : &stepRowsWeighted<Cell, false>;
             }
         });
     }

@@ -19,6 +19,14 @@
 #include "core/operators/stability.hpp"
 #include "core/sim/cpu_kernels.hpp"
 
+// As MORPHOGEN_VECTOR_CLONES in cpu_kernels.cpp: an AVX2 copy (gathers) beside
+// the baseline one, no FMA contraction.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define MORPHOGEN_BORDER_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define MORPHOGEN_BORDER_CLONES
+#endif
+
 namespace morphogen {
 
 namespace {
@@ -201,8 +209,10 @@ CpuSimulator::CpuSimulator(const Session& session)
             m_borderRows.push_back(
                 std::size_t(std::lower_bound(border.begin(), border.end(), atlas->cellAt(0, y)) -
                             border.begin()));
-        if (m_k.op.form == DiffusionOperator::Form::Laplacian9)
+        if (m_k.op.form == DiffusionOperator::Form::Laplacian9 || m_k.crossWeighted())
             m_diagonals = atlasDiagonals(*atlas);
+        if (m_k.weighted())
+            packBorderStencils();
     }
     pickKernels();
 }
@@ -275,11 +285,27 @@ void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil,
         const float *cpx = planes + start, *cpy = planes + cells + start;
         const float *cmx = planes + 2 * cells + start, *cmy = planes + 3 * cells + start;
         out[0] = out[w - 1] = 0.0f; // border or unused: replaced below, or restored
+        if (m_k.crossWeighted()) {
+            const float* k = m_k.diagonalPlanes->data() + start;
+            const float *kmm = k, *kpm = k + cells, *kmp = k + 2 * cells, *kpp = k + 3 * cells;
 #pragma omp simd
-        for (int x = 1; x < w - 1; ++x) {
-            const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
-            const float sum = ((a + b) + d) + e;
-            out[x] = ((a * row[x - 1] + b * row[x + 1]) + d * up[x]) + e * down[x] - sum * row[x];
+            for (int x = 1; x < w - 1; ++x) {
+                const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
+                const float sum = (((a + b) + d) + e) + ((kmm[x] + kpm[x]) + (kmp[x] + kpp[x]));
+                const float sides =
+                    (((a * row[x - 1] + b * row[x + 1]) + d * up[x]) + e * down[x]) +
+                    ((kmm[x] * up[x - 1] + kpm[x] * up[x + 1]) +
+                     (kmp[x] * down[x - 1] + kpp[x] * down[x + 1]));
+                out[x] = sides - sum * row[x];
+            }
+        } else {
+#pragma omp simd
+            for (int x = 1; x < w - 1; ++x) {
+                const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
+                const float sum = ((a + b) + d) + e;
+                out[x] =
+                    ((a * row[x - 1] + b * row[x + 1]) + d * up[x]) + e * down[x] - sum * row[x];
+            }
         }
     } else {
         laplacianRow(up, row, down, out, w, EdgeMode::Clamped, stencil);
@@ -298,9 +324,17 @@ float CpuSimulator::atlasLaplacian(const float* plane, std::uint32_t cell, Stenc
         const float* planes = m_k.weightPlanes->data();
         const float b = planes[cell], e = planes[cells + cell];
         const float a = planes[2 * cells + cell], d = planes[3 * cells + cell];
-        const float sum = ((a + b) + d) + e;
-        return ((a * plane[n[2]] + b * plane[n[0]]) + d * plane[n[3]]) + e * plane[n[1]] -
-               sum * plane[cell];
+        float sum = ((a + b) + d) + e;
+        float sides = ((a * plane[n[2]] + b * plane[n[0]]) + d * plane[n[3]]) + e * plane[n[1]];
+        if (m_k.crossWeighted()) {
+            // Non-zero only where both orders reach one texel: order 0 serves.
+            const float* k = m_k.diagonalPlanes->data() + cell;
+            const std::array<std::uint32_t, 8>& g = m_diagonals[cell];
+            const float k0 = k[0], k1 = k[cells], k2 = k[2 * cells], k3 = k[3 * cells];
+            sum += (k0 + k1) + (k2 + k3);
+            sides += (k0 * plane[g[0]] + k1 * plane[g[1]]) + (k2 * plane[g[2]] + k3 * plane[g[3]]);
+        }
+        return sides - sum * plane[cell];
     }
     // The interior loop's order: -x, +x, then the two vertical neighbours.
     const float sides = plane[n[2]] + plane[n[0]] + plane[n[3]] + plane[n[1]];
@@ -313,6 +347,77 @@ float CpuSimulator::atlasLaplacian(const float* plane, std::uint32_t cell, Stenc
                           0.5f * (plane[d[2]] + plane[d[6]]) + 0.5f * (plane[d[3]] + plane[d[7]]);
     return (4.0f * sides + corners - 20.0f * plane[cell]) * (1.0f / 6.0f);
 }
+
+void CpuSimulator::packBorderStencils() {
+    const Atlas& atlas = *m_k.domain.atlasMap();
+    const std::vector<std::uint32_t>& border = atlas.borderCells();
+    const std::size_t count = border.size(), cells = atlas.cellCount();
+    const int taps = m_k.crossWeighted() ? 8 : 4;
+    BorderStencils& s = m_borderStencils;
+    s.taps = taps;
+    s.index.resize(std::size_t(taps) * count);
+    s.weight.resize(std::size_t(taps) * count);
+    s.centre.resize(count);
+    const float* planes = m_k.weightPlanes->data();
+    const auto& n = atlas.neighbours();
+    // atlasLaplacian's order: -x, +x, -y, +y (planes 2, 0, 3, 1), then the diagonals.
+    constexpr int kLinks[4] = {2, 0, 3, 1};
+    for (std::size_t b = 0; b < count; ++b) {
+        const std::uint32_t cell = border[b];
+        for (int t = 0; t < 4; ++t) {
+            s.index[std::size_t(t) * count + b] = n[cell][std::size_t(kLinks[t])];
+            s.weight[std::size_t(t) * count + b] = planes[std::size_t(kLinks[t]) * cells + cell];
+        }
+        const float* w = &s.weight[b];
+        float sum = ((w[0] + w[count]) + w[2 * count]) + w[3 * count];
+        if (taps == 8) {
+            const float* k = m_k.diagonalPlanes->data() + cell;
+            for (int t = 0; t < 4; ++t) {
+                // Non-zero only where both orders reach one texel: order 0 serves.
+                s.index[std::size_t(4 + t) * count + b] = m_diagonals[cell][std::size_t(t)];
+                s.weight[std::size_t(4 + t) * count + b] = k[std::size_t(t) * cells];
+            }
+            sum += (w[4 * count] + w[5 * count]) + (w[6 * count] + w[7 * count]);
+        }
+        s.centre[b] = sum;
+    }
+}
+
+namespace {
+
+// The weighted Laplacian of border texels [b0, b0 + n) from their packed
+// stencils (CpuSimulator::BorderStencils), in atlasLaplacian's order so both
+// give the same bits; self holds the texels' own values. Gathers: built for
+// AVX2 too, as the fused kernels are (cpu_kernels.cpp).
+MORPHOGEN_BORDER_CLONES void borderLaplacians(const float* plane, const std::uint32_t* index,
+                                              const float* weight, const float* centre,
+                                              std::size_t count, int taps, std::size_t b0,
+                                              std::size_t n, const float* self, float* out) {
+    const std::uint32_t *i0 = index + b0, *i1 = i0 + count, *i2 = i1 + count, *i3 = i2 + count;
+    const float *w0 = weight + b0, *w1 = w0 + count, *w2 = w1 + count, *w3 = w2 + count;
+    const float* c = centre + b0;
+    if (taps == 4) {
+#pragma omp simd
+        for (std::size_t i = 0; i < n; ++i)
+            out[i] = (((w0[i] * plane[i0[i]] + w1[i] * plane[i1[i]]) + w2[i] * plane[i2[i]]) +
+                      w3[i] * plane[i3[i]]) -
+                     c[i] * self[i];
+        return;
+    }
+    const std::uint32_t *i4 = i3 + count, *i5 = i4 + count, *i6 = i5 + count, *i7 = i6 + count;
+    const float *w4 = w3 + count, *w5 = w4 + count, *w6 = w5 + count, *w7 = w6 + count;
+#pragma omp simd
+    for (std::size_t i = 0; i < n; ++i) {
+        const float sides =
+            (((w0[i] * plane[i0[i]] + w1[i] * plane[i1[i]]) + w2[i] * plane[i2[i]]) +
+             w3[i] * plane[i3[i]]) +
+            ((w4[i] * plane[i4[i]] + w5[i] * plane[i5[i]]) +
+             (w6[i] * plane[i6[i]] + w7[i] * plane[i7[i]]));
+        out[i] = sides - c[i] * self[i];
+    }
+}
+
+} // namespace
 
 void CpuSimulator::redoAtlasBorder() {
     const Stencil stencil = m_k.op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
@@ -327,6 +432,7 @@ void CpuSimulator::redoAtlasBorder() {
         const FlushDenormals flush;
         constexpr std::size_t kBlock = 256;
         std::vector<float> scratch(kBlock * 2 * std::size_t(nc));
+        std::vector<float> lap(kBlock);
         RowView view;
         for (int c = 0; c < nc; ++c) {
             view.c[c] = scratch.data() + std::size_t(c) * kBlock;
@@ -345,9 +451,17 @@ void CpuSimulator::redoAtlasBorder() {
             for (int c = 0; c < nc; ++c) {
                 const float d = m_k.op.rates[std::size_t(c)];
                 const float* plane = m_current.plane(c);
+                const BorderStencils& packed = m_borderStencils;
+                if (packed.taps > 0 && d != 0.0f)
+                    borderLaplacians(plane, packed.index.data(), packed.weight.data(),
+                                     packed.centre.data(), border.size(), packed.taps, b0, count,
+                                     view.c[c], lap.data());
                 for (std::size_t i = 0; i < count; ++i) {
                     const std::uint32_t cell = border[b0 + i];
-                    const float term = d == 0.0f ? 0.0f : d * atlasLaplacian(plane, cell, stencil);
+                    const float term =
+                        d == 0.0f
+                            ? 0.0f
+                            : d * (packed.taps > 0 ? lap[i] : atlasLaplacian(plane, cell, stencil));
                     m_next.plane(c)[cell] = std::min(
                         std::max(view.c[c][i] + dt * (view.dcdt[c][i] + term), m_k.clampMin[c]),
                         m_k.clampMax[c]);

@@ -88,6 +88,18 @@ private:
     std::vector<std::size_t> m_borderRows;
     // 9-point on an atlas: per cell its diagonals in both orders (atlas_diagonals.hpp).
     std::vector<std::array<std::uint32_t, 8>> m_diagonals;
+    // Weighted atlases: the border texels' stencils in borderCells() order, as
+    // planes (tap t of border texel b at t * count + b; taps -x, +x, -y, +y,
+    // then with diagonals the four of AtlasWeights::diagonal), and each texel's
+    // centre sum: redoAtlasBorder reads them unit-stride instead of the index
+    // array, four or eight coefficient planes and the diagonals per texel.
+    struct BorderStencils {
+        int taps = 0; // 0: none (an unweighted atlas), 4 or 8
+        std::vector<std::uint32_t> index;
+        std::vector<float> weight;
+        std::vector<float> centre;
+    };
+    BorderStencils m_borderStencils;
     // The 5- or 9-point Laplacian of one atlas row: interior texels by +-1 /
     // +-width in one vectorised loop, then the row's border texels by the
     // index array (and the diagonals).
@@ -97,6 +109,8 @@ private:
     // After a fused step over an atlas texture (a clamped grid to the kernel):
     // the explicit step of every tile-border texel again, through the map.
     void redoAtlasBorder();
+    // Fills m_borderStencils (weighted atlases).
+    void packBorderStencils();
 };
 
 } // namespace morphogen

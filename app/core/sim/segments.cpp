@@ -158,8 +158,11 @@ std::string describeWeightedAtlas(const Session& session) {
     std::ostringstream os;
     os << "weighted atlas (" << session.width << " x " << session.height << " texels)";
     bool said = false;
-    if (session.diffusion.type == DiffusionType::Isotropic &&
-        session.diffusion.stencil == Stencil::NinePoint) {
+    if (session.atlasWeights->hasDiagonals()) {
+        os << "; the weights' 9-point stencil runs (the cross term of sheared texels)";
+        said = true;
+    } else if (session.diffusion.type == DiffusionType::Isotropic &&
+               session.diffusion.stencil == Stencil::NinePoint) {
         os << "; the 9-point stencil runs as the weighted 5-point Laplacian (the weights have "
               "no diagonals)";
         said = true;

@@ -185,11 +185,14 @@ StepConstants StepConstants::fromSession(const Session& session) {
     k.relaxationPasses = session.relaxationPasses;
     if (const AtlasWeights* weights = k.domain.atlasWeights()) {
         k.weightPlanes = std::make_shared<const std::vector<float>>(coefficientPlanes(*weights));
-        // The weights are the four links of each texel; they have no
-        // diagonals, so a 9-point request runs the weighted 5-point.
+        if (weights->hasDiagonals())
+            k.diagonalPlanes =
+                std::make_shared<const std::vector<float>>(morphogen::diagonalPlanes(*weights));
+        // The weights are the stencil: their links (with their diagonals,
+        // if any) run whether the session asked for 5 or 9 points.
         if (k.op.form == DiffusionOperator::Form::Laplacian9) {
             k.op.form = DiffusionOperator::Form::Laplacian5;
-            k.nineToFivePoint = true;
+            k.nineToFivePoint = !weights->hasDiagonals();
         }
     }
     checkOperatorOnDomain(k);

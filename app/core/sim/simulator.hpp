@@ -66,11 +66,20 @@ struct StepConstants {
     // summed in that order on both backends, which with every c = 1 is the
     // unweighted stencil's (l + r + d + u) - 4 u bit for bit.
     std::shared_ptr<const std::vector<float>> weightPlanes;
-    // A 9-point stencil was asked for on a weighted atlas: the weighted
-    // 5-point runs (op.form is Laplacian5), and describePlan says so.
+    // Weighted atlas whose weights have diagonals (AtlasWeights::diagonal): their
+    // four planes ((-x,-y), (+x,-y), (-x,+y), (+x,+y)), else null. The term above
+    // then also has
+    //   + ((k_0 u_0 + k_1 u_1) + (k_2 u_2 + k_3 u_3)) on the sides and
+    //   S + ((k_0 + k_1) + (k_2 + k_3)) as the centre's sum,
+    // on both backends; op.form stays Laplacian5 (the weights are the stencil).
+    std::shared_ptr<const std::vector<float>> diagonalPlanes;
+    // A 9-point stencil was asked for on a weighted atlas whose weights have no
+    // diagonals: the weighted 5-point runs (op.form is Laplacian5), and
+    // describePlan says so.
     bool nineToFivePoint = false;
 
     bool weighted() const { return weightPlanes != nullptr; }
+    bool crossWeighted() const { return diagonalPlanes != nullptr; }
     bool hasParamMaps() const { return !mappedParams.empty(); }
     bool tiled() const { return domain.kind() == DomainKind::TiledGrid; }
     // Whether every per-cell parameter is constant per tile and none is a

@@ -77,6 +77,7 @@ SurfaceSetup setUpSurface(Session& session,
     SurfaceWeightOptions weights;
     weights.unitsPerWorld = setup.unitsPerWorld;
     weights.metricCorrection = spec.metricCorrection;
+    weights.crossTerm = spec.crossTerm;
     if (spec.scaleBy == SurfaceScaleBy::MeanCurvature) {
         setup.featureScale = curvatureScale(setup.tiles, spec.scaleStrength);
         weights.featureScale = &setup.featureScale;

@@ -6,10 +6,22 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/limits.hpp"
+#include "core/domain/atlas_diagonals.hpp"
 
 namespace morphogen {
 
 namespace {
+
+// The cross term's cap, a fraction of the smaller axial conductance (see the
+// derivation in surfaceWeights): every axis link keeps at least a tenth of it.
+constexpr double kCrossCap = 0.9;
+// A texel's weight sum with the cross term is held within this factor of its
+// 5-point sum, and within the surface's largest 5-point sum or this factor of
+// the median one (see surfaceWeights).
+// Measured on the sample meshes (surface_curvature_spots_holes, 4x4 tiles):
+// the substeps stay 22 (holes), 11 (torus), 16 (blob, 15 without the cross
+// term) and 3 (sphere, 2 without).
+constexpr double kCrossGrowth = 2.0;
 
 double median(std::vector<double> v) {
     if (v.empty())
@@ -62,15 +74,136 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
                                   ? std::max(double(tiles.texelArea[c]) * scale * scale, minArea)
                                   : meanArea);
 
-    // The width of texel c across a step in direction d of its own frame, in model units:
-    // its area over its length along the step (|Jv| for a u-step when the frame is
-    // orthogonal; less on a sheared texel, which keeps the stencil's spread rate that of
-    // the surface: trace 2 of its effective diffusion tensor, as on a square grid).
-    const auto width = [&](std::uint32_t c, int d) {
+    // The length of texel c along a step in direction d of its own frame, and its width
+    // across the step, in model units: its area over its length along the step (|Jv| for a u-step
+    // when the frame is orthogonal; less on a sheared texel, which keeps the stencil's spread rate
+    // that of the surface: trace 2 of its effective diffusion tensor, as on a square grid).
+    const auto length = [&](std::uint32_t c, int d) {
         const Eigen::Vector3f& along = (d % 2 == 0) ? tiles.jacobianU[c] : tiles.jacobianV[c];
-        const double length = std::max(double(along.norm()) * scale, minDistance);
-        return std::max(double(tiles.texelArea[c]) * scale * scale, minArea) / length;
+        return std::max(double(along.norm()) * scale, minDistance);
     };
+    const auto width = [&](std::uint32_t c, int d) {
+        return std::max(double(tiles.texelArea[c]) * scale * scale, minArea) / length(c, d);
+    };
+
+    // The cross term (the 9-point stencil). In a texel's (u, v) frame, with g = J^T J
+    // (J = [Ju Jv], model units per texel step), the Laplace-Beltrami operator is
+    //     lap f = (1 / sqrt|g|) d_a (K^ab d_b f),   K = sqrt|g| g^-1
+    //           = (1 / A) d_a (K^ab d_b f),         A = sqrt|g| the texel's area,
+    //     K = [[G, -F], [-F, E]] / A,  E = Ju.Ju, F = Ju.Jv, G = Jv.Jv.
+    // K is dimensionless and positive definite: a finite-volume Laplacian is (1/A_i)
+    // times a sum of fluxes K (u_j - u_i) over texel pairs, each flux computed once
+    // for the pair, which conserves sum(A u) and makes the operator symmetric in the
+    // area inner product (real spectrum, Gershgorin bound as the 5-point's). The
+    // 5-point stencil has no d_u d_v: it can only hold K_uu and K_vv, so the surface
+    // weights below used to settle for a diagonal tensor of the right trace.
+    // The mixed derivative, with s = sign(K_uv) and the diagonal (1, s):
+    //     f(+1,+s) + f(-1,-s) - 2 f = f_uu + 2 s f_uv + f_vv + O(h^4),
+    // so 2 K_uv f_uv = |K_uv| [(f(+1,+s) - f) + (f(-1,-s) - f)] - |K_uv| (d_uu + d_vv),
+    // i.e. the cross term is the flux |K_uv| on the two diagonals along (1, s) and
+    // -|K_uv| on the four axis links. The texel's stencil becomes
+    //     axis u: K_uu - |K_uv|,  axis v: K_vv - |K_uv|,  diagonals (1, s): |K_uv|,
+    // exact for quadratics (its second moment is 2K: the spread in world units is
+    // J 2K/A J^T = 2 J g^-1 J^T = 2 P, the tangent plane's identity, isotropic).
+    // Every weight is >= 0 when |K_uv| <= min(K_uu, K_vv), i.e. |Ju.Jv| <= min(|Ju|^2,
+    // |Jv|^2): true for a kite of an equilateral triangle (60 / 90 / 120 degrees, its
+    // sides 1 : 1/sqrt(3) at the worst), so the stencil is monotone (an M-matrix: no
+    // new extrema, the clamps unaffected) and its stability bound is the plain sum of
+    // its weights. This form needs only two of the four diagonals, and on a texel
+    // sheared at 60 degrees its centre weight 2(K_uu + K_vv) - 2|K_uv| equals the
+    // trace-2 5-point's (4 sin 60 = 3 / sin 60): no extra substeps. (The centred form,
+    // +-K_uv / 2 on all four diagonals, has negative weights: not monotone, and a
+    // larger Gershgorin bound.) |K_uv| is capped at kCrossCap min(K_uu, K_vv), so
+    // every axis link keeps some flux (a right isosceles triangle's kite, 45 degrees
+    // between sides 1 : sqrt(2), is exactly at the bound); a texel sheared or stretched
+    // past the cap keeps the 5-point stencil's anisotropy in proportion to the excess
+    // (skinny simplified triangles): monotone still.
+    // Where a texel lacks one of the two diagonals (a tile corner of valence != 4 on the
+    // diagonal's side, an open edge; diagonalMirrors), it keeps the trace-2 5-point
+    // weights: a one-texel defect at those corners.
+    // The time step: a sheared texel's weights grow as 1 / sin(angle) (the 5-point's
+    // shrink as sin(angle)), and the explicit step's limit is set by the largest
+    // weight sum on the surface, often a squeezed texel at the floors. So a texel's
+    // sum with the cross term (its own wishes, before the pair averages) is held
+    // within kCrossGrowth times its 5-point sum (an angle below 33 degrees on a texel
+    // of equal sides would exceed it; 45 degrees needs 1.29, 60 degrees 1) and within
+    // the surface's budget: its largest 5-point sum, or kCrossGrowth times the median
+    // one if more (a uniformly sheared sheet must pay for its exact operator).
+    // Where the full 9-point exceeds that, the texel's stencil is the blend
+    // (1 - t) 5-point + t 9-point with the largest t that fits: monotone and
+    // consistent still, with the 5-point's anisotropy in proportion to 1 - t.
+    // Pair fluxes average the two texels' wishes, as the axis links' widths do: the
+    // axis flux is (l_i + l_j) / 2 / d_ij with l = (1 - t) width + t (K_uu - |K_uv|) |Ju|
+    // for a u-link ((K_uu - |K_uv|) |Ju| is the 5-point width |Jv| on an orthogonal
+    // texel), and the diagonal flux (t_i |K_uv|_i + t_j |K_uv|_j) / 2.
+    std::vector<double> kappa(cells, 0.0); // t |K_uv| (|K_uv| capped); 0: the 5-point weights
+    std::vector<double> blend(cells, 0.0); // t
+    std::vector<std::array<double, 2>> axis(cells, {0.0, 0.0}); // K_uu, K_vv when kappa > 0
+    std::vector<std::array<std::uint32_t, 8>> diagonals;
+    std::vector<std::array<int, 4>> mirrors;
+    const bool cross = options.metricCorrection && options.crossTerm;
+    if (cross) {
+        diagonals = atlasDiagonals(atlas);
+        mirrors = diagonalMirrors(atlas, diagonals);
+        // Per texel, the 5-point coefficient sum it asks for: 2 (1 / lu^2 + 1 / lv^2).
+        const auto sum5 = [&](std::uint32_t i) {
+            return 2.0 / (length(i, 0) * length(i, 0)) + 2.0 / (length(i, 1) * length(i, 1));
+        };
+        double budget = 0;
+        std::vector<double> sums;
+        for (std::uint32_t i = 0; i < cells; ++i)
+            if (atlas.used(i)) {
+                sums.push_back(sum5(i));
+                budget = std::max(budget, sums.back());
+            }
+        budget = std::max(budget, kCrossGrowth * median(sums));
+        for (std::uint32_t i = 0; i < cells; ++i) {
+            if (!atlas.used(i))
+                continue;
+            const double lu = length(i, 0), lv = length(i, 1), a = w.area[i];
+            const double norms = double(tiles.jacobianU[i].norm() * tiles.jacobianV[i].norm());
+            const double cosine =
+                norms > 0 ? double(tiles.jacobianU[i].dot(tiles.jacobianV[i])) / norms : 0.0;
+            const double kuu = lv * lv / a, kvv = lu * lu / a, kuv = -cosine * lu * lv / a;
+            // The two diagonals along (1, s): slots (-x,-y), (+x,+y) for s = +1, else
+            // (+x,-y), (-x,+y).
+            const int s0 = kuv > 0 ? 0 : 1, s1 = kuv > 0 ? 3 : 2;
+            const double k = std::min(std::abs(kuv), kCrossCap * std::min(kuu, kvv));
+            const auto paired = [&](int slot) {
+                const int back = mirrors[i][std::size_t(slot)];
+                return back >= 0 &&
+                       mirrors[diagonals[i][std::size_t(slot)]][std::size_t(back)] == slot;
+            };
+            if (!(k > 0 && paired(s0) && paired(s1)))
+                continue;
+            const double five = sum5(i), nine = (2 * (kuu + kvv) - 2 * k) / a;
+            const double limit = std::min(kCrossGrowth * five, budget);
+            const double t = nine <= limit ? 1.0 : (limit - five) / (nine - five);
+            if (t > 0) {
+                blend[i] = t;
+                kappa[i] = t * k;
+                axis[i] = {kuu, kvv};
+            }
+        }
+        w.diagonal.assign(cells, {0.0f, 0.0f, 0.0f, 0.0f});
+    }
+    // What texel c asks of its slot s: kappa on the two diagonals along (1, s).
+    const auto diagonalWish = [&](std::uint32_t c, int slot) {
+        if (kappa[c] == 0)
+            return 0.0;
+        const bool along = tiles.jacobianU[c].dot(tiles.jacobianV[c]) > 0
+                               ? (slot == 1 || slot == 2)
+                               : (slot == 0 || slot == 3);
+        return along ? kappa[c] : 0.0;
+    };
+    // Texel c's face length l for its link d (the 5-point width without the cross term).
+    const auto face = [&](std::uint32_t c, int d) {
+        if (kappa[c] == 0)
+            return width(c, d);
+        const double t = blend[c];
+        return (1 - t) * width(c, d) + (t * axis[c][std::size_t(d % 2)] - kappa[c]) * length(c, d);
+    };
+
     for (std::uint32_t i = 0; i < cells; ++i) {
         if (!atlas.used(i))
             continue;
@@ -83,7 +216,7 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
             const int back = int(s.back);
             double c = 1.0;
             if (options.metricCorrection) {
-                const double l = 0.5 * (width(i, d) + width(j, back));
+                const double l = 0.5 * (face(i, d) + face(j, back));
                 const double dist = std::max(
                     double((tiles.texelPositions[i] - tiles.texelPositions[j]).norm()) * scale,
                     minDistance);
@@ -95,6 +228,22 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
             const float flux = float(c);
             w.coefficients[i][d] = float(double(flux) / w.area[i]);
             w.coefficients[j][back] = float(double(flux) / w.area[j]);
+        }
+        if (!cross)
+            continue;
+        for (int slot = 0; slot < 4; ++slot) {
+            const int back = mirrors[i][std::size_t(slot)];
+            const std::uint32_t j = diagonals[i][std::size_t(slot)];
+            if (back < 0 || j <= i || mirrors[j][std::size_t(back)] != slot)
+                continue;
+            double c = 0.5 * (diagonalWish(i, slot) + diagonalWish(j, back));
+            if (c == 0)
+                continue;
+            if (f)
+                c *= double((*f)[i]) * double((*f)[j]);
+            const float flux = float(c);
+            w.diagonal[i][std::size_t(slot)] = float(double(flux) / w.area[i]);
+            w.diagonal[j][std::size_t(back)] = float(double(flux) / w.area[j]);
         }
     }
     return w;

@@ -18,11 +18,19 @@ struct SurfaceWeightOptions {
     // Per atlas cell (cellCount() entries) or null: a factor on the feature
     // size; the diffusion rate scales with its square (curvatureScale).
     const std::vector<float>* featureScale = nullptr;
+    // With metric correction: the 9-point stencil's cross term (AtlasWeights::
+    // diagonal), isotropic on sheared texels. Off: the 5-point weights only.
+    bool crossTerm = true;
 };
 
-// Per-texel weights of the 5-point Laplacian on the tiled surface (the
-// AtlasWeights contract: coefficients[i][d] * area[i] is the same from both
-// sides of every glued texel pair, up to float rounding: one flux per pair).
+// Per-texel weights of the Laplacian on the tiled surface (the AtlasWeights
+// contract: coefficients[i][d] * area[i], and diagonal[i][s] * area[i], is the
+// same from both sides of every texel pair, up to float rounding: one flux per
+// pair). With metric correction and crossTerm, a 9-point stencil (diagonal
+// filled): the 5-point's links below become the axial part of the texel's
+// metric tensor and the diagonals carry its cross term, isotropic on sheared
+// texels; the derivation, its cap and its limits are in surface_weights.cpp.
+// Without crossTerm, the 5-point weights below.
 //
 // With correction, a finite-volume Laplacian on the surface: texel i is a cell
 // of area |Ju x Jv| (world) * unitsPerWorld^2, and between i and its neighbour
