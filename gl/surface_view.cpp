@@ -133,6 +133,11 @@ std::optional<Eigen::Vector3f> pickSurface(const TriangleMesh& mesh, const Bound
     return Eigen::Vector3f(origin + direction * nearest);
 }
 
+void SurfaceRenderer::setTextures(const TexturedMesh& mesh) {
+    m_baseColour = uploadImage(mesh.baseColour, "base colour texture");
+    m_normalMap = uploadImage(mesh.normalMap, "normal map");
+}
+
 SurfaceRenderer::SurfaceRenderer(const TexturedMesh& mesh)
     : m_baseColour(uploadImage(mesh.baseColour, "base colour texture")),
       m_normalMap(uploadImage(mesh.normalMap, "normal map")) {

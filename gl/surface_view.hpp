@@ -56,6 +56,10 @@ public:
     explicit SurfaceRenderer(const TexturedMesh& mesh);
     // Throws InputError for a size of 0 or one past GL's limits (naming it).
     SurfaceImage render(const ViewOptions& view) const;
+    // New base colour and normal map for the same geometry (a pattern that
+    // grows: the designer's live 3D view), without re-uploading the mesh or
+    // re-building the program. Throws std::invalid_argument as the constructor.
+    void setTextures(const TexturedMesh& mesh);
 
     const BoundingSphere& bounds() const { return m_bounds; }
 

@@ -87,6 +87,7 @@ Designer::~Designer() {
         m_job->worker.join();
     }
     m_display.reset();
+    m_modelRenderer.reset(); // GL objects go while the context lives
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();

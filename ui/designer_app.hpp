@@ -193,6 +193,8 @@ private:
     std::shared_ptr<const SurfaceSetup> m_surface; // the open session's mesh and tiles, or null
     Orbit m_orbit;
     gl::Texture2D m_modelImage;
+    std::unique_ptr<gl::SurfaceRenderer> m_modelRenderer; // of m_modelRendererFor's mesh
+    std::shared_ptr<const SurfaceSetup> m_modelRendererFor; // held: identity stays unique
     gl::ViewOptions m_modelView; // the last 3D picture's camera (picking aims with it)
     BoundingSphere m_modelBounds;
     bool m_modelStale = true;
@@ -205,6 +207,10 @@ private:
     long long m_recordNext = 0;
     int m_viewMode = 0;
     int m_requestTab = -1;
+    // The stability report and the settings it was computed for.
+    std::pair<std::uint64_t, int> m_stabilityKey{~std::uint64_t(0), -1};
+    std::string m_stabilityText;
+    bool m_stabilityWarning = false;
     std::map<std::size_t, std::string>
         m_stageText; // the cascade editor's JSON being edited // 0: canvas and model side by side,
                      // 1: canvas, 2: model

@@ -9,9 +9,9 @@
 #include <glad/gl.h>
 #include <imgui.h>
 
-#include "core/output/colormap.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/exploration_points.hpp"
+#include "ui/coloured_state.hpp"
 #include "ui/designer_app.hpp"
 
 namespace morphogen::ui {
@@ -176,12 +176,8 @@ void Designer::renderMap() {
             };
             const RunResult r = runSession(s, cpu, options);
             if (!r.cancelled) {
-                const std::vector<float> rgb = applyColormap(
-                    r.state, colormapChemical(s.colormap, s.outputModel()), s.colormap);
-                pixels->assign(rgb.size() / 3 * 4, 1.0f);
-                for (std::size_t i = 0; i < rgb.size() / 3; ++i)
-                    for (int c = 0; c < 3; ++c)
-                        (*pixels)[i * 4 + std::size_t(c)] = rgb[i * 3 + std::size_t(c)];
+                *pixels = colouredRgba(r.state, colormapChemical(s.colormap, s.outputModel()),
+                                       s.colormap);
                 job->message = "rendered the map";
             } else {
                 job->message = "map cancelled";

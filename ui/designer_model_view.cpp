@@ -115,7 +115,15 @@ void Designer::renderModelView(int width, int height) {
     Session shown = live;
     shown.colormap = m_doc.liveColormap();
     const SurfaceColours c = surfaceColours(m_doc.run().state(), shown, *live.atlas);
-    const gl::SurfaceRenderer renderer(texturedSurface(m_surface->tiles, c.height, c.colours));
+    // The mesh and program stay; only the pattern's textures change.
+    const TexturedMesh textured = texturedSurface(m_surface->tiles, c.height, c.colours);
+    if (!m_modelRenderer || m_modelRendererFor != m_surface) {
+        m_modelRenderer = std::make_unique<gl::SurfaceRenderer>(textured);
+        m_modelRendererFor = m_surface;
+    } else {
+        m_modelRenderer->setTextures(textured);
+    }
+    const gl::SurfaceRenderer& renderer = *m_modelRenderer;
     gl::ViewOptions view;
     view.width = width;
     view.height = height;

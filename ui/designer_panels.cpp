@@ -313,43 +313,42 @@ void Designer::drawParamsSection() {
     if (ImGui::IsItemDeactivated())
         m_doc.endChange();
 
-    // The stability report of the values in force, as the CLI checks them.
-    Session check = live;
-    check.steps = 1;
-    check.stages.clear();
-    check.dt = dt;
-    static std::string cachedKey, cachedText;
-    static bool cachedWarning = false;
-    const std::string key = sessionToJson(check).dump();
-    if (key != cachedKey) {
-        cachedKey = key;
-        cachedText.clear();
-        cachedWarning = false;
+    // The stability report of the values in force, as the CLI checks them:
+    // recomputed when a setting or the running stage changes, not per frame.
+    const std::pair<std::uint64_t, int> key{m_doc.revision(), m_doc.run().position().segment};
+    if (key != m_stabilityKey) {
+        m_stabilityKey = key;
+        m_stabilityText.clear();
+        m_stabilityWarning = false;
+        Session check = live;
+        check.steps = 1;
+        check.stages.clear();
+        check.dt = dt;
         try {
             const StabilityReport report = checkSessionStability(check, true);
             for (const StabilityNote& n : report.notes) {
-                cachedText += n.text + "\n";
-                cachedWarning = cachedWarning || n.warning;
+                m_stabilityText += n.text + "\n";
+                m_stabilityWarning = m_stabilityWarning || n.warning;
             }
             if (report.refused) {
-                cachedText += *report.refused;
-                cachedWarning = true;
+                m_stabilityText += *report.refused;
+                m_stabilityWarning = true;
             }
             if (report.capped) {
-                cachedText += "dt is above the stable limit: the CLI would cap it to " +
-                              std::to_string(check.dt);
-                cachedWarning = true;
+                m_stabilityText += "dt is above the stable limit: the CLI would cap it to " +
+                                   std::to_string(check.dt);
+                m_stabilityWarning = true;
             }
         } catch (const std::exception& e) {
-            cachedText = e.what();
-            cachedWarning = true;
+            m_stabilityText = e.what();
+            m_stabilityWarning = true;
         }
-        if (cachedText.empty())
-            cachedText = "stable";
+        if (m_stabilityText.empty())
+            m_stabilityText = "stable";
     }
-    ImGui::PushStyleColor(ImGuiCol_Text,
-                          cachedWarning ? ImVec4(1, 0.7f, 0.3f, 1) : ImVec4(0.6f, 0.9f, 0.6f, 1));
-    ImGui::TextWrapped("%s", cachedText.c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, m_stabilityWarning ? ImVec4(1, 0.7f, 0.3f, 1)
+                                                            : ImVec4(0.6f, 0.9f, 0.6f, 1));
+    ImGui::TextWrapped("%s", m_stabilityText.c_str());
     ImGui::PopStyleColor();
 }
 

@@ -50,7 +50,7 @@ void Document::swapSession(Session base, std::unique_ptr<SessionRun> run, std::s
             std::swap(m_run, old->second);
             std::swap(m_path, *oldPath);
             m_history.clear();
-            m_dirty = true;
+            changed();
         };
         m_base = std::move(base);
         m_run = std::move(run);
@@ -62,6 +62,7 @@ void Document::swapSession(Session base, std::unique_ptr<SessionRun> run, std::s
         m_path = std::move(path);
     }
     m_history.clear();
+    changed();
 }
 
 void Document::open(Session session, const std::string& path) {
@@ -79,7 +80,7 @@ int Document::advance(int sessionSteps) {
     assert(m_run);
     const int n = m_run->advance(sessionSteps * m_run->substeps());
     if (n > 0)
-        m_dirty = true;
+        m_dirty = true; // the pattern grew: unsaved, but the settings are as they were
     return n;
 }
 
@@ -96,7 +97,7 @@ void Document::reseed(std::uint64_t seed) {
 void Document::replace(Session session, const std::string& label) {
     std::unique_ptr<SessionRun> run = startRun(session);
     swapSession(std::move(session), std::move(run), m_path, label);
-    m_dirty = true;
+    changed();
 }
 
 void Document::setColormap(const ColorMapSpec& colormap) {
@@ -104,7 +105,7 @@ void Document::setColormap(const ColorMapSpec& colormap) {
     auto set = [this](const ColorMapSpec& c) {
         m_base.colormap = c;
         m_run->setColormap(c);
-        m_dirty = true;
+        changed();
     };
     set(colormap);
     push({"colour map " + colormap.name, [set, before] { set(before); },
@@ -120,14 +121,14 @@ void Document::setParam(const std::string& name, float value) {
     LiveEdit e;
     e.params[name] = value;
     m_run->applyEdit(std::move(e));
-    m_dirty = true;
+    changed();
 }
 
 void Document::setDt(float dt) {
     LiveEdit e;
     e.dt = dt;
     m_run->applyEdit(std::move(e));
-    m_dirty = true;
+    changed();
 }
 
 void Document::endChange() {
@@ -146,7 +147,7 @@ void Document::endChange() {
         e.params = params;
         e.dt = dt;
         m_run->applyEdit(std::move(e));
-        m_dirty = true;
+        changed();
     };
     push({before.label, [apply, before] { apply(before.params, before.dt); },
           [apply, after, afterDt] { apply(after, afterDt); }});
@@ -192,7 +193,7 @@ void Document::applyPiece(StrokeSpec piece) {
     e.stroke = piece;
     m_run->applyEdit(std::move(e));
     m_stroke->pieces.push_back(std::move(piece));
-    m_dirty = true;
+    changed();
 }
 
 void Document::endStroke() {
@@ -208,7 +209,7 @@ void Document::endStroke() {
     // steps run since are undone with it.
     auto undo = [this, before] {
         m_run->restore(*before);
-        m_dirty = true;
+        changed();
     };
     auto redo = [this, pieces] {
         for (const StrokeSpec& piece : *pieces) {
@@ -216,7 +217,7 @@ void Document::endStroke() {
             e.stroke = piece;
             m_run->applyEdit(std::move(e));
         }
-        m_dirty = true;
+        changed();
     };
     push({toString(pieces->front().mode) + " stroke", undo, redo});
 }
@@ -234,6 +235,7 @@ void Document::undo() {
     Action a = std::move(m_undo.back());
     m_undo.pop_back();
     a.undo();
+    changed();
     m_redo.push_back(std::move(a));
     // A restored checkpoint forgets later edits; snapshots past it no longer
     // belong to this run.
@@ -247,6 +249,7 @@ void Document::redo() {
     Action a = std::move(m_redo.back());
     m_redo.pop_back();
     a.redo();
+    changed();
     m_undo.push_back(std::move(a));
 }
 
@@ -301,7 +304,7 @@ void Document::branch(std::size_t index) {
     auto target = std::make_shared<RunCheckpoint>(m_history[index].checkpoint);
     m_run->restore(*target);
     m_history.erase(m_history.begin() + std::ptrdiff_t(index) + 1, m_history.end());
-    m_dirty = true;
+    changed();
     // Undo returns to where the run was, edits and all.
     push({"go back to step " + std::to_string(m_history[index].step),
           [this, before] { m_run->restore(*before); },

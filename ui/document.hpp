@@ -94,6 +94,10 @@ public:
     void save(const std::string& path);
     // Changes since the last open or save.
     bool dirty() const { return m_dirty; }
+    // Counts changes of the settings (parameters, dt, colour map, session,
+    // undo, redo), not steps: views derived from the settings (the stability
+    // report) recompute only when it moves.
+    std::uint64_t revision() const { return m_revision; }
 
     // Growth history: checkpoints taken as the pattern grows, at most
     // `budgetBytes` of state together (older ones are thinned out: every
@@ -129,6 +133,11 @@ private:
     std::unique_ptr<SessionRun> m_run;
     std::vector<Action> m_undo, m_redo;
     bool m_dirty = false;
+    std::uint64_t m_revision = 0;
+    void changed() {
+        m_dirty = true;
+        ++m_revision;
+    }
 
     struct OpenChange {
         std::string label;

@@ -5,9 +5,9 @@
 #include <glad/gl.h>
 #include <omp.h>
 
-#include "core/output/colormap.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/runner.hpp"
+#include "ui/coloured_state.hpp"
 
 namespace morphogen::ui {
 
@@ -41,12 +41,8 @@ void Thumbnails::work(std::vector<Session> presets) {
             const RunResult result = runSession(s, cpu, options);
             if (result.cancelled)
                 return;
-            const std::vector<float> rgb = applyColormap(
+            std::vector<float> rgba = colouredRgba(
                 result.state, colormapChemical(s.colormap, s.outputModel()), s.colormap);
-            std::vector<float> rgba(std::size_t(kSize) * kSize * 4, 1.0f);
-            for (std::size_t i = 0; i < std::size_t(kSize) * kSize; ++i)
-                for (int c = 0; c < 3; ++c)
-                    rgba[i * 4 + std::size_t(c)] = rgb[i * 3 + std::size_t(c)];
             std::lock_guard<std::mutex> lock(m_mutex);
             m_pending[s.name] = std::move(rgba);
         } catch (const std::exception& e) {
