@@ -3,6 +3,7 @@
 // session replays to the canvas' state bit for bit.
 
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,8 @@
 
 using namespace morphogen;
 using morphogen::ui::Document;
+using morphogen::ui::GrowthHistory;
+using morphogen::ui::readStateFile;
 
 namespace {
 
@@ -164,6 +167,59 @@ TEST(Document, HistoryStaysWithinItsBudget) {
     EXPECT_LE(doc.history().size(), 6u);
     EXPECT_GE(doc.history().size(), 3u);
     // The span is kept: the first snapshot and the latest.
-    EXPECT_EQ(doc.history().front().step, 1);
-    EXPECT_EQ(doc.history().back().step, 40);
+    EXPECT_EQ(doc.history().step(0), 1);
+    EXPECT_EQ(doc.history().lastStep(), 40);
+}
+
+TEST(Document, HistorySpillsToDiskAndReadsBack) {
+    const std::filesystem::path folder = test::scratchDir("document_history") / "spill";
+    std::filesystem::remove_all(folder);
+    std::vector<State> states;
+    {
+        Document doc(cpu());
+        doc.open(small());
+        const std::size_t snapshotBytes = 40 * 40 * 2 * sizeof(float);
+        // Two states in memory, twenty on disk.
+        doc.setHistoryBudget(snapshotBytes * 2);
+        doc.setHistorySpill(folder.string(), snapshotBytes * 20);
+        for (int i = 0; i < 12; ++i) {
+            doc.advance(2);
+            doc.recordSnapshot();
+            states.push_back(doc.run().state());
+        }
+        const GrowthHistory& h = doc.history();
+        ASSERT_EQ(h.size(), 12u); // nothing thinned: the disk holds the rest
+        EXPECT_TRUE(h.spilled(0));
+        EXPECT_FALSE(h.spilled(11));
+        EXPECT_LE(h.memoryBytes(), snapshotBytes * 2);
+        EXPECT_EQ(h.diskBytes(), snapshotBytes * 10);
+        for (std::size_t i = 0; i < h.size(); ++i)
+            EXPECT_EQ(difference(h.state(i), states[i]), 0.0f) << "snapshot " << i;
+        // Branching from a spilled snapshot restores its state exactly.
+        doc.branch(3);
+        EXPECT_EQ(doc.steps(), 8);
+        EXPECT_EQ(difference(doc.run().state(), states[3]), 0.0f);
+        EXPECT_EQ(h.size(), 4u);
+        // The dropped snapshots' files are gone.
+        std::size_t files = 0;
+        for ([[maybe_unused]] const auto& f : std::filesystem::directory_iterator(folder))
+            ++files;
+        EXPECT_EQ(files, 4u); // snapshots 0-3 were all on disk
+    }
+    // The history's folder goes with it.
+    EXPECT_FALSE(std::filesystem::exists(folder));
+}
+
+TEST(Document, HistoryFilesThatAreDamagedAreRefusedByName) {
+    const std::filesystem::path file = test::scratchDir("document_history") / "bad.state";
+    {
+        std::ofstream out(file, std::ios::binary);
+        out << "not a state";
+    }
+    try {
+        (void)readStateFile(file);
+        FAIL() << "a damaged snapshot was read";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.state"), std::string::npos) << e.what();
+    }
 }

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include <unistd.h>
 
 #include "core/sim/cpu_simulator.hpp"
 
@@ -54,7 +57,10 @@ float maxAbsDifference(const State& a, const State& b) {
 }
 
 std::filesystem::path scratchDir(const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
+    // One directory per process: ctest runs the same gl test on EGL and OSMesa at once, and
+    // two processes writing one file made CI fail ("cannot move the file into place").
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / (name + "-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     return dir;
 }

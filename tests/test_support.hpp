@@ -23,7 +23,7 @@ float maxAbsValue(const State& s);
 // Largest absolute difference over all chemicals.
 float maxAbsDifference(const State& a, const State& b);
 
-// A folder under the system's temporary folder for one test file's files,
+// A folder under the system's temporary folder for one test file's files (one per process),
 // created if missing.
 std::filesystem::path scratchDir(const std::string& name);
 

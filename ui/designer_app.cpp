@@ -1,7 +1,12 @@
 #include "ui/designer_app.hpp"
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include <glad/gl.h>
@@ -38,6 +43,23 @@ void Designer::guarded(const char* what, const std::function<void()>& f) {
     }
 }
 
+namespace {
+
+void removeStaleHistory(const std::string& stateDir) {
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(stateDir, ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind("history-", 0) != 0)
+            continue;
+        char* end = nullptr;
+        const long pid = std::strtol(name.c_str() + 8, &end, 10);
+        if (pid > 0 && *end == 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH)
+            fs::remove_all(e.path(), ec);
+    }
+}
+
+} // namespace
+
 Designer::Designer(const DesignerOptions& options, const DesignerServices& services)
     : m_options(options), m_services(services),
       m_settings(Settings::load(options.configDir, options.stateDir)),
@@ -47,6 +69,13 @@ Designer::Designer(const DesignerOptions& options, const DesignerServices& servi
     std::fprintf(stderr, "morphogen design: %s\n", m_backend.reason.c_str());
     m_controlsWidth = m_settings.controlsWidth;
     m_sideWidth = m_settings.sideWidth;
+    // Growth history past its memory budget goes to disk, one folder per
+    // designer process (removed at exit), next to the autosave. A crashed
+    // designer's folder is removed by the next one.
+    removeStaleHistory(m_settings.stateDir);
+    m_doc.setHistorySpill(
+        (fs::path(m_settings.stateDir) / ("history-" + std::to_string(::getpid()))).string(),
+        kHistoryDiskBudget);
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -523,7 +552,7 @@ void Designer::simulate() {
         else if (m_simSeconds > kFrameBudget * 0.7)
             m_autoSteps = std::max(1, m_autoSteps * 3 / 4);
     }
-    if (m_doc.steps() - (m_doc.history().empty() ? 0 : m_doc.history().back().step) >=
+    if (m_doc.steps() - (m_doc.history().empty() ? 0 : m_doc.history().lastStep()) >=
         m_snapshotEvery)
         m_doc.recordSnapshot();
 }
@@ -543,8 +572,7 @@ void Designer::refreshDisplay() {
                              : m_doc.liveChemical();
     guarded("display", [&] {
         if (m_scrub && *m_scrub < m_doc.history().size())
-            m_display->upload(m_doc.history()[*m_scrub].checkpoint.state, chemical,
-                              m_doc.liveColormap());
+            m_display->upload(m_doc.history().state(*m_scrub), chemical, m_doc.liveColormap());
         else
             m_display->update(m_doc.run().simulator(), chemical, m_doc.liveColormap());
     });
@@ -669,6 +697,12 @@ void Designer::drawStatusBar(float y, float h) {
     if (!m_recordDir.empty()) {
         ImGui::SameLine();
         ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "| REC %d frames", m_recordIndex);
+    }
+    if (const LocalRegrowth* r =
+            m_doc.isOpen() && !m_doc.run().finished() ? m_doc.run().regrowth() : nullptr) {
+        ImGui::SameLine();
+        ImGui::TextColored(ImVec4(1, 0.62f, 0.25f, 1), "| re-growing A%d: %d of %d tiles",
+                           r->phase(), int(r->tiles().size()), r->tileCount());
     }
     if (!m_status.empty()) {
         ImGui::SameLine();

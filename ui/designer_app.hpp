@@ -34,6 +34,7 @@ struct BrushSettings {
     float radius = 0.03f; // fraction of the canvas width
     float falloff = 0.5f;
     std::uint64_t seed = 1;
+    bool localized = true; // on a model: re-grow locally after a stroke (Lo's localized RD)
 };
 
 // A long job on a worker thread (an export at a large size): progress for
@@ -64,6 +65,9 @@ struct Orbit {
 // The designer: one window, the document, the views and panels. Its member
 // functions are the actions that the mouse, the keyboard and a script all
 // go through (ui/script.hpp drives the same ones).
+// Disk space the growth history may use once its memory budget is spent.
+inline constexpr std::size_t kHistoryDiskBudget = std::size_t(4) << 30;
+
 class Designer {
 public:
     Designer(const DesignerOptions& options, const DesignerServices& services);
@@ -136,6 +140,9 @@ private:
     void drawCanvas(float x, float y, float w, float h);
     void drawModelView(float x, float y, float w, float h);
     void renderModelView(int width, int height);
+    // Washes the localized re-growth's active tiles towards orange.
+    void tintActiveTiles(std::vector<std::array<std::uint8_t, 4>>& colours,
+                         const Atlas& atlas) const;
     // The brush settings as a stroke (chemical and parameter names resolved).
     StrokeSpec strokeFromBrush() const;
     // Opens a session that grows on a mesh: its tiles are built on a worker
@@ -165,6 +172,7 @@ private:
     CanvasView m_view;
     bool m_viewFramed = false;
     bool m_nearest = true, m_tiled = false;
+    bool m_showActiveTiles = true; // the localized re-growth's tiles, on the canvas and the model
     std::array<float, 4> m_canvasRect{}, m_modelRect{};
     BrushSettings m_brush;
     bool m_playing = true, m_quit = false;
@@ -193,7 +201,7 @@ private:
     std::shared_ptr<const SurfaceSetup> m_surface; // the open session's mesh and tiles, or null
     Orbit m_orbit;
     gl::Texture2D m_modelImage;
-    std::unique_ptr<gl::SurfaceRenderer> m_modelRenderer; // of m_modelRendererFor's mesh
+    std::unique_ptr<gl::SurfaceRenderer> m_modelRenderer;   // of m_modelRendererFor's mesh
     std::shared_ptr<const SurfaceSetup> m_modelRendererFor; // held: identity stays unique
     gl::ViewOptions m_modelView; // the last 3D picture's camera (picking aims with it)
     BoundingSphere m_modelBounds;

@@ -101,6 +101,21 @@ void Designer::drawCanvas(float x, float y, float w, float h) {
                       ImVec2(origin.x + float(b[0]), origin.y + float(b[1])),
                       IM_COL32(255, 255, 255, 60));
     }
+    // The localized re-growth's active tiles (Lo's Fig. 4) on the atlas.
+    const LocalRegrowth* regrowth = m_doc.isOpen() ? m_doc.run().regrowth() : nullptr;
+    if (m_showActiveTiles && regrowth && m_doc.live().atlas) {
+        const Atlas& atlas = *m_doc.live().atlas;
+        for (int t : regrowth->tiles()) {
+            const std::uint32_t corner = atlas.tileCell(t, 0, 0);
+            const double x = corner % std::uint32_t(atlas.width()),
+                         y = corner / std::uint32_t(atlas.width()), n = atlas.tileSize();
+            const auto a = m_view.toScreen({x, y}, size.x, size.y);
+            const auto b = m_view.toScreen({x + n, y + n}, size.x, size.y);
+            draw->AddRectFilled(ImVec2(origin.x + float(a[0]), origin.y + float(a[1])),
+                                ImVec2(origin.x + float(b[0]), origin.y + float(b[1])),
+                                IM_COL32(255, 140, 30, 70));
+        }
+    }
     // The brush outline: its radius and, inside, where the falloff starts.
     if (hovered || m_doc.stroking()) {
         const float r = float(m_brush.radius * cw * m_view.zoom);
@@ -121,8 +136,7 @@ void Designer::drawCanvas(float x, float y, float w, float h) {
             const Clock::time_point now = Clock::now();
             if (seconds(now - m_lastReadout) > 0.1 || m_readout.width() == 0) {
                 guarded("readout", [&] {
-                    m_readout =
-                        m_scrub ? m_doc.history()[*m_scrub].checkpoint.state : m_doc.run().state();
+                    m_readout = m_scrub ? m_doc.history().state(*m_scrub) : m_doc.run().state();
                 });
                 m_lastReadout = now;
             }
@@ -152,7 +166,7 @@ void Designer::drawCanvas(float x, float y, float w, float h) {
         ImGui::SetCursorScreenPos(ImVec2(origin.x + 8, origin.y + 8));
         ImGui::TextColored(ImVec4(1, 0.85f, 0.4f, 1),
                            "history: step %lld (Branch to continue from here)",
-                           m_doc.history()[*m_scrub].step);
+                           m_doc.history().step(*m_scrub));
     }
     ImGui::End();
 }
@@ -237,8 +251,9 @@ void Designer::drawPresets() {
             ImGui::TextUnformatted(s->name.c_str());
             ImGui::PushTextWrapPos(0);
             ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-            ImGui::TextUnformatted(s->surface.active() ? "on a 3D model: render --mesh"
-                                                       : s->description.c_str());
+            if (s->surface.active())
+                ImGui::Text("on a 3D model (%s)", s->surface.mesh.c_str());
+            ImGui::TextUnformatted(s->description.c_str());
             ImGui::PopStyleColor();
             ImGui::PopTextWrapPos();
             ImGui::EndGroup();
@@ -249,7 +264,7 @@ void Designer::drawPresets() {
             if (current || hovered)
                 ImGui::GetWindowDrawList()->AddRectFilled(
                     lo, hi, current ? IM_COL32(66, 150, 250, 60) : IM_COL32(255, 255, 255, 25));
-            if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !s->surface.active())
+            if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left))
                 openPreset(s->name);
             ImGui::Dummy(ImVec2(0, 2));
             ImGui::PopID();
@@ -276,7 +291,7 @@ void Designer::drawHistory() {
         m_scrub = std::size_t(index);
         m_playing = false;
     }
-    ImGui::Text("step %lld", history[std::size_t(index)].step);
+    ImGui::Text("step %lld", history.step(std::size_t(index)));
     ImGui::BeginDisabled(!m_scrub);
     if (ImGui::Button("Branch from here")) {
         guarded("branch", [&] { m_doc.branch(*m_scrub); });

@@ -68,6 +68,7 @@ void Designer::drawModelView(float x, float y, float w, float h) {
         StrokeSpec stroke = strokeFromBrush();
         ++m_brush.seed;
         stroke.surface = true;
+        stroke.localized = m_brush.localized;
         stroke.radius = worldRadius;
         guarded("brush", [&] {
             m_doc.beginStroke(stroke);
@@ -108,13 +109,31 @@ void Designer::drawModelView(float x, float y, float w, float h) {
     ImGui::End();
 }
 
+void Designer::tintActiveTiles(std::vector<std::array<std::uint8_t, 4>>& colours,
+                               const Atlas& atlas) const {
+    const LocalRegrowth* regrowth = m_doc.run().regrowth();
+    if (!regrowth)
+        return;
+    // Lo's Fig. 4: the active tiles washed towards orange, the pattern still readable.
+    const std::array<int, 3> tint = {255, 140, 30};
+    for (int t : regrowth->tiles())
+        for (int v = 0; v < atlas.tileSize(); ++v)
+            for (int u = 0; u < atlas.tileSize(); ++u) {
+                std::array<std::uint8_t, 4>& c = colours[atlas.tileCell(t, u, v)];
+                for (std::size_t k = 0; k < 3; ++k)
+                    c[k] = std::uint8_t((c[k] * 3 + tint[k] * 2) / 5);
+            }
+}
+
 void Designer::renderModelView(int width, int height) {
     m_modelStale = false;
     m_lastModelRender = Clock::now();
     const Session& live = m_doc.live();
     Session shown = live;
     shown.colormap = m_doc.liveColormap();
-    const SurfaceColours c = surfaceColours(m_doc.run().state(), shown, *live.atlas);
+    SurfaceColours c = surfaceColours(m_doc.run().state(), shown, *live.atlas);
+    if (m_showActiveTiles)
+        tintActiveTiles(c.colours, *live.atlas);
     // The mesh and program stay; only the pattern's textures change.
     const TexturedMesh textured = texturedSurface(m_surface->tiles, c.height, c.colours);
     if (!m_modelRenderer || m_modelRendererFor != m_surface) {

@@ -391,6 +391,16 @@ void Designer::drawBrushSection() {
                        m_surface ? "%.3f of the model" : "%.3f of width",
                        ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("falloff", &m_brush.falloff, 0.0f, 1.0f, "%.2f");
+    if (m_surface) {
+        ImGui::Checkbox("re-grow locally", &m_brush.localized);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "After a stroke only the tiles it can reach step, ring by ring, until "
+                "the pattern there settles (Lo's localized reaction-diffusion): "
+                "fast on a settled pattern; the rest of the model waits meanwhile.");
+        ImGui::SameLine();
+        ImGui::Checkbox("show active tiles", &m_showActiveTiles);
+    }
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("Left drag paints, right or middle drag pans, the wheel zooms, [ and ] "
                        "size the brush.");

@@ -239,8 +239,7 @@ void Document::undo() {
     m_redo.push_back(std::move(a));
     // A restored checkpoint forgets later edits; snapshots past it no longer
     // belong to this run.
-    while (!m_history.empty() && m_history.back().step > steps())
-        m_history.pop_back();
+    m_history.dropAfterStep(steps());
 }
 
 void Document::redo() {
@@ -278,35 +277,20 @@ void Document::save(const std::string& path) {
 }
 
 void Document::recordSnapshot() {
-    if (!m_history.empty() && m_history.back().step >= steps())
+    if (!m_history.empty() && m_history.lastStep() >= steps())
         return;
-    m_history.push_back({steps(), m_run->checkpoint()});
-    auto bytes = [&] {
-        std::size_t total = 0;
-        for (const Snapshot& s : m_history)
-            total += s.checkpoint.state.cellCount() * std::size_t(s.checkpoint.state.channels()) *
-                     sizeof(float);
-        return total;
-    };
-    // Thin out the older half: the timeline keeps its whole span, coarser
-    // towards the start.
-    while (m_history.size() > 2 && bytes() > m_historyBudget) {
-        for (std::size_t i = 1; i + 1 < m_history.size() && i < m_history.size() / 2; ++i)
-            m_history.erase(m_history.begin() + std::ptrdiff_t(i));
-        if (m_history.size() <= 2)
-            break;
-    }
+    m_history.record(steps(), m_run->checkpoint());
 }
 
 void Document::branch(std::size_t index) {
     assert(index < m_history.size());
     auto before = std::make_shared<RunCheckpoint>(m_run->checkpoint());
-    auto target = std::make_shared<RunCheckpoint>(m_history[index].checkpoint);
+    auto target = std::make_shared<RunCheckpoint>(m_history.checkpoint(index));
     m_run->restore(*target);
-    m_history.erase(m_history.begin() + std::ptrdiff_t(index) + 1, m_history.end());
+    m_history.keepUpTo(index);
     changed();
     // Undo returns to where the run was, edits and all.
-    push({"go back to step " + std::to_string(m_history[index].step),
+    push({"go back to step " + std::to_string(m_history.step(index)),
           [this, before] { m_run->restore(*before); },
           [this, target] { m_run->restore(*target); }});
 }

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -10,6 +9,7 @@
 
 #include "core/session/session.hpp"
 #include "core/sim/session_run.hpp"
+#include "ui/growth_history.hpp"
 
 namespace morphogen::ui {
 
@@ -99,17 +99,16 @@ public:
     // report) recompute only when it moves.
     std::uint64_t revision() const { return m_revision; }
 
-    // Growth history: checkpoints taken as the pattern grows, at most
-    // `budgetBytes` of state together (older ones are thinned out: every
-    // other one goes). Scrubbing shows one; branch() continues from it
-    // (the run forgets what came after it: undoable).
-    struct Snapshot {
-        long long step;
-        RunCheckpoint checkpoint;
-    };
+    // Growth history: checkpoints taken as the pattern grows (growth_history.hpp:
+    // a memory budget, then a spill folder on disk, then thinning). Scrubbing
+    // shows one; branch() continues from it (the run forgets what came after
+    // it: undoable).
     void recordSnapshot();
-    const std::deque<Snapshot>& history() const { return m_history; }
-    void setHistoryBudget(std::size_t budgetBytes) { m_historyBudget = budgetBytes; }
+    const GrowthHistory& history() const { return m_history; }
+    void setHistoryBudget(std::size_t budgetBytes) { m_history.setMemoryBudget(budgetBytes); }
+    void setHistorySpill(const std::string& folder, std::size_t diskBudget) {
+        m_history.setSpill(folder, diskBudget);
+    }
     void branch(std::size_t index);
 
     // Undo steps kept; older ones are dropped (each may hold a state copy).
@@ -155,8 +154,7 @@ private:
     void applyPiece(StrokeSpec piece);
     std::optional<OpenStroke> m_stroke;
 
-    std::deque<Snapshot> m_history;
-    std::size_t m_historyBudget = std::size_t(256) << 20;
+    GrowthHistory m_history;
 };
 
 // The session as the canvas runs it: at its size without coarse-to-fine,

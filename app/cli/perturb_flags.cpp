@@ -7,6 +7,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/domain/tile_sets.hpp"
+#include "core/sim/local_regrowth.hpp"
 #include "core/sim/local_relax.hpp"
 #include "core/sim/localized_rd.hpp"
 #include "core/surface/surface_perturb.hpp"
@@ -75,10 +76,11 @@ void applyPerturbation(const PerturbFlags& flags, const Session& session, const 
     std::unique_ptr<Simulator> sim = make(running);
     sim->setState(result.state);
     sim->applyBrush(p.brush);
-    const TileNeighbourhoods neighbourhoods(atlas);
-    ActiveTileSchedule schedule(neighbourhoods, p.touched,
-                                iterationsToCrossTile(StepConstants::fromSession(running)));
-    const RelaxResult r = relaxLocally(*sim, &schedule, atlas.tileCount());
+    // The set grows where the change reaches its edge (local_regrowth.hpp):
+    // Lo's step-counted growth went global on meshes before spots re-formed.
+    LocalRegrowth regrowth(std::make_shared<const TileNeighbourhoods>(atlas),
+                           running.domain().sharedAtlas(), p.touched);
+    const RelaxResult r = relaxAdaptively(*sim, regrowth);
     std::ostringstream os;
     os << "perturbed " << p.brush.region.cells().size() << " texels in " << p.touched.size()
        << " tiles; localized RD " << (r.settled ? "re-settled" : "did not re-settle") << " after "

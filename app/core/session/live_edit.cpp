@@ -61,7 +61,7 @@ StrokeSpec strokeFromJson(const FieldReader& edit, const json& block,
                           const std::vector<const ReactionModel*>& models) {
     FieldReader reader(block, edit.source(), edit.path("stroke"));
     reader.rejectUnknown({"mode", "chemical", "param", "value", "seed", "points", "radius",
-                          "falloff", "continues", "space"});
+                          "falloff", "continues", "space", "localized"});
     StrokeSpec s;
     if (!reader.find("mode"))
         reader.failField("mode", "is missing (accepted: " + brushModeNames() + ")");
@@ -101,6 +101,10 @@ StrokeSpec strokeFromJson(const FieldReader& edit, const json& block,
     if (space != "canvas" && space != "surface")
         reader.failField("space", "is '" + space + "', accepted: canvas, surface");
     s.surface = space == "surface";
+    s.localized = reader.boolean("localized", false);
+    if (s.localized && !s.surface)
+        reader.failField("localized", "needs \"space\": \"surface\": localized re-growth runs "
+                                      "on a mesh's tiles, not on the canvas");
     const json* points = reader.find("points");
     const std::string expected =
         s.surface ? "must be a non-empty array of [x, y, z] points on the mesh (its coordinates)"
@@ -143,6 +147,8 @@ json strokeToJson(const StrokeSpec& s) {
     j["falloff"] = s.falloff;
     if (s.continues)
         j["continues"] = true;
+    if (s.localized)
+        j["localized"] = true;
     j["points"] = json::array();
     if (s.surface) {
         j["space"] = "surface";
@@ -160,7 +166,8 @@ json strokeToJson(const StrokeSpec& s) {
 bool StrokeSpec::operator==(const StrokeSpec& o) const {
     return mode == o.mode && chemical == o.chemical && param == o.param && value == o.value &&
            seed == o.seed && points == o.points && radius == o.radius && falloff == o.falloff &&
-           continues == o.continues && surface == o.surface && surfacePoints == o.surfacePoints;
+           continues == o.continues && surface == o.surface && surfacePoints == o.surfacePoints &&
+           localized == o.localized;
 }
 
 bool LiveEdit::operator==(const LiveEdit& o) const {

@@ -43,6 +43,12 @@ struct StrokeSpec {
     // full amount over the whole stroke, however often the path crosses it,
     // as an opacity brush in a paint program (a new stroke builds up on the last).
     bool continues = false;
+    // On a surface: after the stroke only the tiles it can have reached step,
+    // growing ring by ring until the pattern there has settled again (Lo's
+    // localized reaction-diffusion, core/sim/local_regrowth.hpp); the rest
+    // of the surface holds its values meanwhile. For strokes on a settled
+    // pattern: a fast re-growth. A session replays it step for step.
+    bool localized = false;
 
     bool operator==(const StrokeSpec& o) const;
 };

@@ -5,25 +5,11 @@
 #include <cmath>
 
 #include "core/base/errors.hpp"
+#include "core/sim/local_regrowth.hpp"
 #include "core/sim/localized_rd.hpp"
 #include "core/sim/simulator.hpp"
 
 namespace morphogen {
-
-namespace {
-
-float maxChangePerStep(const State& a, const State& b, int steps) {
-    float worst = 0;
-    for (int c = 0; c < a.channels(); ++c) {
-        const float* pa = a.plane(c);
-        const float* pb = b.plane(c);
-        for (std::size_t i = 0; i < a.cellCount(); ++i)
-            worst = std::max(worst, std::fabs(pa[i] - pb[i]));
-    }
-    return worst / float(steps);
-}
-
-} // namespace
 
 RelaxResult relaxLocally(Simulator& sim, ActiveTileSchedule* schedule, int tileCount,
                          const RelaxOptions& options) {
@@ -73,6 +59,53 @@ RelaxResult relaxLocally(Simulator& sim, ActiveTileSchedule* schedule, int tileC
     if (!result.global)
         result.finalTiles = stepped; // not schedule->tiles(): the last advance may have grown it
     sim.setActiveTiles({});
+    return result;
+}
+
+RelaxResult relaxAdaptively(Simulator& sim, LocalRegrowth& regrowth, const RelaxOptions& options) {
+    using Clock = std::chrono::steady_clock;
+    RelaxResult result;
+    std::vector<int> stepped;
+    while (!regrowth.over() && result.iterations < options.maxSteps) {
+        if (result.phases.empty() || stepped != regrowth.tiles()) {
+            stepped = regrowth.tiles();
+            result.phases.push_back({regrowth.phase(), int(stepped.size()), 0, 0});
+            sim.setActiveTiles(stepped);
+        }
+        const int n = std::max(
+            1, std::min(regrowth.stepsBeforeChange(), options.maxSteps - result.iterations));
+        const auto start = Clock::now();
+        sim.run(n);
+        bool read = false;
+        regrowth.stepped(n, [&] {
+            read = true;
+            return sim.state(); // waits for the device
+        });
+        if (!read && options.sync)
+            options.sync();
+        result.phases.back().seconds += std::chrono::duration<double>(Clock::now() - start).count();
+        result.phases.back().iterations += n;
+        result.iterations += n;
+    }
+    sim.setActiveTiles({});
+    result.settled = regrowth.settled();
+    result.finalTiles = stepped;
+    if (!regrowth.over() || regrowth.settled()) {
+        for (const RelaxPhase& p : result.phases)
+            result.seconds += p.seconds;
+        return result;
+    }
+    // Past the threshold: the rest globally.
+    RelaxOptions rest = options;
+    rest.maxSteps = std::max(1, options.maxSteps - result.iterations);
+    const RelaxResult global = relaxLocally(sim, nullptr, regrowth.tileCount(), rest);
+    result.phases.insert(result.phases.end(), global.phases.begin(), global.phases.end());
+    result.iterations += global.iterations;
+    result.settled = global.settled;
+    result.global = true;
+    result.finalTiles.clear();
+    for (const RelaxPhase& p : result.phases)
+        result.seconds += p.seconds;
     return result;
 }
 

@@ -6,6 +6,7 @@
 namespace morphogen {
 
 class ActiveTileSchedule;
+class LocalRegrowth;
 class Simulator;
 
 // Running a disturbed pattern back to equilibrium, globally or with localized
@@ -50,5 +51,13 @@ struct RelaxResult {
 // tiles (what a global phase reports).
 RelaxResult relaxLocally(Simulator& sim, ActiveTileSchedule* schedule, int tileCount,
                          const RelaxOptions& options = {});
+
+// The same with the set grown where the change reaches its edge (a
+// LocalRegrowth started from the disturbed tiles, its checks every
+// options.checkEvery steps with options.settledBelow): until it settles, or
+// until the set passes its threshold, then globally as relaxLocally. The
+// result's phases are the sets it ran with.
+RelaxResult relaxAdaptively(Simulator& sim, LocalRegrowth& regrowth,
+                            const RelaxOptions& options = {});
 
 } // namespace morphogen

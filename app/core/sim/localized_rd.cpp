@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <iterator>
 
 #include "core/domain/atlas.hpp"
 #include "core/domain/atlas_weights.hpp"
@@ -61,6 +62,19 @@ void ActiveTileSchedule::checkThreshold() {
         m_global = true;
         m_tiles.clear();
     }
+}
+
+void ActiveTileSchedule::add(const std::vector<int>& touched) {
+    if (m_global)
+        return;
+    const std::vector<int> grown = m_neighbourhoods->grow(touched);
+    std::vector<int> merged;
+    merged.reserve(m_tiles.size() + grown.size());
+    std::set_union(m_tiles.begin(), m_tiles.end(), grown.begin(), grown.end(),
+                   std::back_inserter(merged));
+    m_tiles = std::move(merged);
+    m_done = 0;
+    checkThreshold();
 }
 
 bool ActiveTileSchedule::advance(int iterations) {

@@ -48,6 +48,10 @@ public:
     int phase() const { return m_phase; } // k of A_k (the phase the set is in)
     // Iterations to run before the set next changes (0 once global: any).
     int iterationsLeft() const { return m_global ? 0 : m_growEvery - m_done; }
+    // Another change while the set runs: the set becomes A_k united with
+    // N(touched) (the set already holds the earlier change's margin) and
+    // its phase starts over. Nothing once global.
+    void add(const std::vector<int>& touched);
     // Counts `iterations` run with tiles(); grows the set when a phase is
     // complete. Returns true when the set changed.
     bool advance(int iterations);

@@ -9,11 +9,14 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/names.hpp"
+#include "core/domain/atlas.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/numerics/resample.hpp"
 #include "core/operators/stability.hpp"
 #include "core/session/cascade.hpp"
 #include "core/sim/initial_state.hpp"
+#include "core/sim/localized_rd.hpp"
+#include "core/sim/simulator.hpp"
 #include "core/sim/stroke_brush.hpp"
 
 namespace morphogen {
@@ -32,6 +35,7 @@ void SessionRun::enterSegment(std::size_t i) {
     m_stepsRun.push_back(0);
     m_entry = m_segments[i];
     m_strokeCoverage.clear(); // cell indices of the last segment's grid
+    m_regrowth.reset();       // the new simulator steps every tile
     const Segment& segment = m_segments[i];
     const Session& part = segment.session;
     const ReactionModel& model = part.reactionModel();
@@ -135,7 +139,11 @@ int SessionRun::advance(int steps) {
         const bool settling = inSettleSegment();
         if (settling)
             n = std::min(n, m_settleEvery - done % m_settleEvery);
+        if (m_regrowth)
+            n = std::min(n, m_regrowth->stepsBeforeChange());
         m_simulator->run(n);
+        if (m_regrowth)
+            afterRegrowthSteps(n);
         m_stepsRun[m_index] += n;
         m_stepsDone += n;
         run += n;
@@ -207,13 +215,60 @@ void SessionRun::applyDueEdits() {
     }
 }
 
-void SessionRun::applyNow(const LiveEdit& edit) {
+void SessionRun::applyNow(const LiveEdit& edit, bool follow) {
     if (!edit.params.empty())
         setParams(edit.params);
     if (edit.dt)
         setDt(*edit.dt);
-    if (edit.stroke)
-        m_simulator->applyBrush(strokeWrite(*edit.stroke));
+    std::optional<Brush> written;
+    if (edit.stroke) {
+        written = strokeWrite(*edit.stroke);
+        m_simulator->applyBrush(*written);
+    }
+    if (follow)
+        followEdit(edit, written ? &*written : nullptr);
+}
+
+void SessionRun::followEdit(const LiveEdit& edit, const Brush* written) {
+    // New parameters or dt change the whole pattern: every tile steps.
+    if (!edit.params.empty() || edit.dt || !edit.stroke || !edit.stroke->localized) {
+        endRegrowth();
+        return;
+    }
+    const Atlas* atlas = segmentSession().domain().atlasMap();
+    if (!atlas) // a stroke parsed as localized is on a surface: the session has an atlas
+        return;
+    const std::vector<int> touched = touchedTiles(*atlas, written->region);
+    if (touched.empty())
+        return; // a piece that changed nothing (its path covered already)
+    if (m_regrowth) {
+        m_regrowth->touch(touched);
+    } else {
+        if (m_neighbourhoodsOf != atlas) {
+            m_neighbourhoods = std::make_shared<const TileNeighbourhoods>(*atlas);
+            m_neighbourhoodsOf = atlas;
+        }
+        m_regrowth.emplace(m_neighbourhoods, segmentSession().domain().sharedAtlas(), touched);
+    }
+    m_simulator->setActiveTiles(m_regrowth->over() ? std::vector<int>{} : m_regrowth->tiles());
+    if (m_regrowth->over())
+        m_regrowth.reset();
+}
+
+void SessionRun::afterRegrowthSteps(int steps) {
+    if (!m_regrowth->stepped(steps, [this] { return m_simulator->state(); }))
+        return;
+    if (m_regrowth->over())
+        endRegrowth();
+    else
+        m_simulator->setActiveTiles(m_regrowth->tiles());
+}
+
+void SessionRun::endRegrowth() {
+    if (!m_regrowth)
+        return;
+    m_regrowth.reset();
+    m_simulator->setActiveTiles({});
 }
 
 Brush SessionRun::strokeWrite(const StrokeSpec& stroke) {
@@ -258,6 +313,7 @@ RunCheckpoint SessionRun::checkpoint() const {
     c.nextEdit = m_nextEdit;
     c.stateModel = m_stateModel;
     c.strokeCoverage = m_strokeCoverage;
+    c.regrowth = m_regrowth;
     return c;
 }
 
@@ -295,13 +351,16 @@ void SessionRun::restore(const RunCheckpoint& c) {
         LiveEdit replay = e;
         if (replay.stroke && writesChemical(replay.stroke->mode))
             replay.stroke.reset();
-        applyNow(replay);
+        applyNow(replay, false);
     }
     // What later levels had taken from live changes.
     for (std::size_t i = m_index + 1; i < m_segments.size(); ++i)
         m_segments[i] = c.segments[i];
     m_simulator->setState(c.state);
     m_strokeCoverage = c.strokeCoverage;
+    m_regrowth = c.regrowth;
+    if (m_regrowth)
+        m_simulator->setActiveTiles(m_regrowth->tiles());
 }
 
 void SessionRun::endSegment() {
@@ -492,6 +551,7 @@ void SessionRun::replaceSession(const Session& session) {
     m_simulator = std::move(simulator);
     segment.session = part;
     m_stateModel = &next;
+    m_regrowth.reset(); // the new simulator steps every tile
 }
 
 } // namespace morphogen

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/sim/local_regrowth.hpp"
 #include "core/sim/runner.hpp"
 #include "core/sim/segments.hpp"
 #include "core/sim/stroke_brush.hpp"
@@ -43,6 +44,7 @@ struct RunCheckpoint {
     std::size_t nextEdit = 0;      // the session's own edits still to come
     const ReactionModel* stateModel = nullptr;
     StrokeCoverage strokeCoverage;
+    std::optional<LocalRegrowth> regrowth;
 };
 
 // A session advanced step by step: cascade stages and schedule levels are
@@ -136,6 +138,12 @@ public:
     // The edits applied so far, the session's own and applyEdit's, in order.
     const std::vector<LiveEdit>& edits() const { return m_applied; }
 
+    // The localized re-growth under way after a localized surface stroke
+    // (StrokeSpec::localized): its active tiles and phase; null when every
+    // tile steps. A parameter or dt change, a stroke that is not localized
+    // and a new segment end it.
+    const LocalRegrowth* regrowth() const { return m_regrowth ? &*m_regrowth : nullptr; }
+
     // The run as it is now, and a return to such a moment, earlier or later
     // (of the same run: a checkpoint of another SessionRun is a programmer
     // error). Restoring gives back the state bit for bit, the position, the
@@ -152,8 +160,14 @@ private:
     void finishSegment(State state);
     // Applies the session's own edits that are due at sessionStepsDone().
     void applyDueEdits();
-    // Applies an edit without recording it.
-    void applyNow(const LiveEdit& edit);
+    // Applies an edit without recording it; `follow`: start, extend or end
+    // the localized re-growth as the edit asks (not when restore replays
+    // edits: the checkpoint holds the re-growth).
+    void applyNow(const LiveEdit& edit, bool follow = true);
+    void followEdit(const LiveEdit& edit, const Brush* written);
+    // Counts steps run under a re-growth and updates the active tiles.
+    void afterRegrowthSteps(int steps);
+    void endRegrowth();
     // The brush write of a stroke edit now (its uncovered part for a piece
     // that continues a stroke).
     Brush strokeWrite(const StrokeSpec& stroke);
@@ -186,6 +200,9 @@ private:
     std::size_t m_nextEdit = 0; // into m_session.edits
     std::vector<LiveEdit> m_applied;
     StrokeCoverage m_strokeCoverage; // the last stroke's, for the pieces that continue it
+    std::optional<LocalRegrowth> m_regrowth;
+    std::shared_ptr<const TileNeighbourhoods> m_neighbourhoods; // of m_neighbourhoodsOf
+    const Atlas* m_neighbourhoodsOf = nullptr;
 };
 
 } // namespace morphogen

@@ -1,0 +1,240 @@
+// Localized re-growth inside a live run (core/sim/local_regrowth.hpp): the
+// active set's phases and settle checks, and SessionRun following localized
+// surface strokes: tiles outside the set keep their values bit for bit, the
+// re-growth ends, and a saved session and a checkpoint replay it exactly.
+
+#include <algorithm>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/base/errors.hpp"
+#include "core/domain/atlas.hpp"
+#include "core/domain/tile_sets.hpp"
+#include "core/sim/cpu_simulator.hpp"
+#include "core/sim/local_regrowth.hpp"
+#include "core/sim/session_run.hpp"
+#include "core/surface/surface_setup.hpp"
+#include "test_support.hpp"
+
+using namespace morphogen;
+
+namespace {
+
+SimulatorFactory cpu() {
+    return [](const Session& s) { return std::make_unique<CpuSimulator>(s); };
+}
+
+State constantState(int width, int height, float value) {
+    State s(width, height, 1);
+    std::fill(s.plane(0), s.plane(0) + s.cellCount(), value);
+    return s;
+}
+
+// turk_small_spots on the sample sphere with few small tiles.
+Session sphereSession() {
+    Session s = loadPreset("turk_small_spots");
+    s.length = 60;
+    s.surface.mesh = "sample:sphere";
+    s.surface.tiles = 120;
+    s.surface.tileSize = 4;
+    s.steps = 400;
+    return s;
+}
+
+LiveEdit localizedDab(float value = 3.0f) {
+    LiveEdit e;
+    e.stroke = StrokeSpec{};
+    e.stroke->mode = BrushMode::Add;
+    e.stroke->chemical = "b";
+    e.stroke->value = value;
+    e.stroke->surface = true;
+    e.stroke->surfacePoints = {{0.0, 0.0, 1.0}};
+    e.stroke->radius = 0.12;
+    e.stroke->falloff = 0.5;
+    e.stroke->localized = true;
+    return e;
+}
+
+bool tileEqual(const State& a, const State& b, const Atlas& atlas, int tile) {
+    for (int c = 0; c < a.channels(); ++c)
+        for (int v = 0; v < atlas.tileSize(); ++v)
+            for (int u = 0; u < atlas.tileSize(); ++u) {
+                const std::uint32_t i = atlas.tileCell(tile, u, v);
+                if (a.plane(c)[i] != b.plane(c)[i])
+                    return false;
+            }
+    return true;
+}
+
+} // namespace
+
+TEST(LocalRegrowth, GrowsWhereTheChangeReachesTheSetsEdgeAndEndsWhenSettled) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::periodicPlane(4, 10, 10));
+    auto n = std::make_shared<const TileNeighbourhoods>(*atlas);
+    LocalRegrowthOptions o;
+    o.checkEvery = 20;
+    LocalRegrowth r(n, atlas, {55}, o);
+    EXPECT_FALSE(r.over());
+    EXPECT_EQ(r.tiles().size(), 9u); // A1 = N(A0)
+    EXPECT_EQ(r.phase(), 1);
+    EXPECT_EQ(r.stepsBeforeChange(), 20);
+    // What the next check reads: tile t's cells moved by `by`.
+    State state = constantState(atlas->width(), atlas->height(), 0.5f);
+    const auto move = [&](int tile, float by) {
+        for (int v = 0; v < atlas->tileSize(); ++v)
+            for (int u = 0; u < atlas->tileSize(); ++u)
+                state.plane(0)[atlas->tileCell(tile, u, v)] += by;
+    };
+    int reads = 0;
+    const auto read = [&] {
+        ++reads;
+        return state;
+    };
+    EXPECT_FALSE(r.stepped(15, read)); // no check yet
+    EXPECT_EQ(reads, 0);
+    EXPECT_EQ(r.stepsBeforeChange(), 5);
+    EXPECT_FALSE(r.stepped(5, read)); // the first check takes the reference
+    EXPECT_EQ(reads, 1);
+    // The change stays in the stroke's own tile (the centre of A1): no growth.
+    move(55, 0.1f);
+    EXPECT_FALSE(r.stepped(20, read));
+    EXPECT_EQ(r.tiles().size(), 9u);
+    // It reaches a tile of the set's outer ring: the set grows by a ring.
+    move(54, 0.1f);
+    EXPECT_TRUE(r.stepped(20, read));
+    EXPECT_EQ(r.phase(), 2);
+    EXPECT_EQ(r.tiles().size(), 25u);
+    EXPECT_FALSE(r.over());
+    // Another stroke far away: the set takes its neighbourhood in, same phase.
+    r.touch({0});
+    EXPECT_EQ(r.tiles().size(), 34u);
+    EXPECT_EQ(r.phase(), 2);
+    // Nothing moves between two checks: settled, over.
+    EXPECT_FALSE(r.stepped(20, read)); // reference again after the touch
+    EXPECT_TRUE(r.stepped(20, read));
+    EXPECT_TRUE(r.over());
+    EXPECT_TRUE(r.settled());
+}
+
+TEST(LocalRegrowth, GoesGlobalWhenTheSetPassesTheThreshold) {
+    auto atlas = std::make_shared<const Atlas>(Atlas::periodicPlane(4, 10, 10));
+    auto n = std::make_shared<const TileNeighbourhoods>(*atlas);
+    LocalRegrowth r(n, atlas, {55});
+    float value = 0;
+    const auto read = [&] {
+        value += 1.0f; // everything keeps changing: the set grows at every check
+        return constantState(atlas->width(), atlas->height(), value);
+    };
+    int checks = 0;
+    while (!r.over() && checks < 100) {
+        r.stepped(r.stepsBeforeChange(), read);
+        ++checks;
+    }
+    EXPECT_TRUE(r.over());
+    EXPECT_FALSE(r.settled());
+    EXPECT_EQ(checks, 3); // reference, A2 (25 tiles), A3 (49 > 40): global
+}
+
+TEST(LocalRegrowth, SessionRunStepsOnlyTheActiveTilesAndReplaysExactly) {
+    Session s = sphereSession();
+    const SurfaceSetup setup = setUpSurface(s);
+    const Atlas& atlas = *setup.tiles.atlas;
+    SessionRun run(s, cpu(), 0);
+    run.advance(200 * run.substeps());
+    ASSERT_EQ(run.regrowth(), nullptr);
+    run.applyEdit(localizedDab());
+    ASSERT_NE(run.regrowth(), nullptr);
+    const std::vector<int> active = run.regrowth()->tiles();
+    EXPECT_FALSE(active.empty());
+    EXPECT_LT(int(active.size()), atlas.tileCount() / 2);
+    const State atStroke = run.state();
+    const RunCheckpoint mid = run.checkpoint();
+
+    // A few steps: tiles outside the set hold their values bit for bit, some inside change.
+    const int few = std::min(run.regrowth()->stepsBeforeChange(), 5);
+    run.advance(few);
+    const State later = run.state();
+    int outsideChanged = 0, insideChanged = 0;
+    for (int t = 0; t < atlas.tileCount(); ++t) {
+        const bool in = std::binary_search(active.begin(), active.end(), t);
+        const bool same = tileEqual(atStroke, later, atlas, t);
+        outsideChanged += !in && !same;
+        insideChanged += in && !same;
+    }
+    EXPECT_EQ(outsideChanged, 0);
+    EXPECT_GT(insideChanged, 0);
+
+    // The re-growth ends (settled or past the threshold) within the session.
+    while (run.regrowth() && !run.finished())
+        run.advance(25);
+    EXPECT_EQ(run.regrowth(), nullptr);
+    const State end = run.state();
+
+    // A checkpoint taken during the re-growth resumes it identically.
+    RunCheckpoint now = run.checkpoint();
+    run.restore(mid);
+    ASSERT_NE(run.regrowth(), nullptr);
+    EXPECT_EQ(run.regrowth()->tiles(), active);
+    run.advance(now.stepsDone - run.position().stepsDone);
+    EXPECT_EQ(run.position().stepsDone, now.stepsDone);
+    EXPECT_EQ(test::maxAbsDifference(run.state(), end), 0.0f);
+
+    // The saved session replays the localized stroke step for step (saved on
+    // a session step: completed() records whole session steps).
+    const int sub = run.substeps();
+    run.advance(10 * sub + (sub - run.position().stepsDone % sub) % sub);
+    const nlohmann::json j = sessionToJson(run.completed());
+    EXPECT_EQ(j["edits"][0]["stroke"]["localized"], true);
+    Session again = sessionFromJson(j, "regrowth.json");
+    validateSession(again, "regrowth.json");
+    (void)setUpSurface(again);
+    const RunResult replay = runSession(again, cpu(), {});
+    EXPECT_EQ(test::maxAbsDifference(replay.state, run.state()), 0.0f);
+
+    // Without localized re-growth the same stroke changes tiles far from it.
+    SessionRun global(s, cpu(), 0);
+    global.advance(200 * global.substeps());
+    LiveEdit plain = localizedDab();
+    plain.stroke->localized = false;
+    global.applyEdit(plain);
+    EXPECT_EQ(global.regrowth(), nullptr);
+    const State g0 = global.state();
+    global.advance(few);
+    int farChanged = 0;
+    const State g1 = global.state();
+    for (int t = 0; t < atlas.tileCount(); ++t)
+        farChanged +=
+            !std::binary_search(active.begin(), active.end(), t) && !tileEqual(g0, g1, atlas, t);
+    EXPECT_GT(farChanged, 0); // the pattern is still growing there
+}
+
+TEST(LocalRegrowth, AParameterChangeEndsIt) {
+    Session s = sphereSession();
+    (void)setUpSurface(s);
+    SessionRun run(s, cpu(), 0);
+    run.advance(50 * run.substeps());
+    run.applyEdit(localizedDab());
+    ASSERT_NE(run.regrowth(), nullptr);
+    LiveEdit e;
+    e.params = {{"s", s.params.at("s")}};
+    run.applyEdit(e);
+    EXPECT_EQ(run.regrowth(), nullptr);
+}
+
+TEST(LocalRegrowth, OnlySurfaceStrokesAreLocalized) {
+    Session s = loadPreset("gs_coral");
+    s.width = s.height = 32;
+    nlohmann::json j = sessionToJson(s);
+    j["edits"] = nlohmann::json::parse(
+        R"([{"step": 1, "stroke": {"mode": "add", "chemical": "v", "value": 0.5,
+             "points": [[0.5, 0.5]], "localized": true}}])");
+    try {
+        Session bad = sessionFromJson(j, "canvas.json");
+        validateSession(bad, "canvas.json");
+        FAIL() << "a localized canvas stroke was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("localized"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("surface"), std::string::npos) << e.what();
+    }
+}
