@@ -238,3 +238,114 @@ TEST(LocalRegrowth, OnlySurfaceStrokesAreLocalized) {
         EXPECT_NE(std::string(e.what()).find("surface"), std::string::npos) << e.what();
     }
 }
+
+namespace {
+
+// Stretches the ring of the sphere round z = 0.8 along z (a slab across the
+// mesh: small near the pole, so the re-growth stays local).
+LiveEdit stretchNearThePole(double factor) {
+    LiveEdit e;
+    e.deform = DeformSpec{};
+    e.deform->centre = {0.0, 0.0, 0.8};
+    e.deform->direction = {0.0, 0.0, 1.0};
+    e.deform->radius = 0.08;
+    e.deform->factor = factor;
+    return e;
+}
+
+} // namespace
+
+TEST(SurfaceDeformEdit, MovesTheSurfaceRegrowsThereAndReplays) {
+    Session s = sphereSession();
+    (void)setUpSurface(s);
+    ASSERT_TRUE(s.surfaceGeometry);
+    SessionRun run(s, cpu(), 0);
+    run.advance(100 * run.substeps());
+    const RunCheckpoint before = run.checkpoint();
+    const auto positionsBefore = run.segmentSession().atlasPositions;
+    const auto weightsBefore = run.segmentSession().atlasWeights;
+    run.applyEdit(stretchNearThePole(1.6));
+    // The texels moved (the slab stretched, the cap beyond it shifted up by
+    // 0.6 x 0.08) and the metric changed; the re-growth starts from the
+    // deformed tiles.
+    const auto& after = *run.segmentSession().atlasPositions;
+    float highest = -10, highestBefore = -10;
+    for (std::size_t i = 0; i < after.size(); ++i) {
+        highest = std::max(highest, after[i][2]);
+        highestBefore = std::max(highestBefore, (*positionsBefore)[i][2]);
+    }
+    EXPECT_NEAR(highest - highestBefore, 0.6f * 0.08f, 1e-3f);
+    EXPECT_NE(run.segmentSession().atlasWeights, weightsBefore);
+    ASSERT_NE(run.regrowth(), nullptr);
+    EXPECT_FALSE(run.regrowth()->tiles().empty());
+    run.advance(40 * run.substeps());
+    const State end = run.state();
+
+    // Saved and replayed: the deformation is recorded and re-done.
+    const nlohmann::json j = sessionToJson(run.completed());
+    ASSERT_TRUE(j["edits"][0].contains("deform"));
+    EXPECT_EQ(j["edits"][0]["deform"]["factor"], 1.6);
+    Session again = sessionFromJson(j, "deform.json");
+    validateSession(again, "deform.json");
+    (void)setUpSurface(again);
+    EXPECT_EQ(test::maxAbsDifference(runSession(again, cpu(), {}).state, end), 0.0f);
+
+    // Back to before the deformation: the surface and the state as they were;
+    // forward again to after it: the deformed surface comes back.
+    const RunCheckpoint deformed = run.checkpoint();
+    run.restore(before);
+    EXPECT_EQ(run.segmentSession().atlasWeights, weightsBefore);
+    EXPECT_EQ(run.segmentSession().atlasPositions, positionsBefore);
+    EXPECT_EQ(test::maxAbsDifference(run.state(), before.state), 0.0f);
+    run.restore(deformed);
+    EXPECT_NE(run.segmentSession().atlasWeights, weightsBefore);
+    run.advance(5 * run.substeps());
+}
+
+TEST(SurfaceDeformEdit, RefusesWhatItCannotDo) {
+    Session s = sphereSession();
+    (void)setUpSurface(s);
+    SessionRun run(s, cpu(), 0);
+    run.advance(10 * run.substeps());
+    const State before = run.state();
+    // Squeezed to half: the texels' floors (surface_weights.cpp) keep the
+    // weights within the run's substeps (deformSurface refuses a deformation
+    // that would need more), and the run stays sane.
+    {
+        SessionRun squeezed(s, cpu(), 25);
+        squeezed.advance(10 * squeezed.substeps());
+        squeezed.applyEdit(stretchNearThePole(0.5));
+        EXPECT_NO_THROW(squeezed.advance(30 * squeezed.substeps())); // blow-up checks every 25
+    }
+    // A slab off the mesh.
+    LiveEdit away = stretchNearThePole(1.5);
+    away.deform->centre = {50, 50, 50};
+    EXPECT_THROW(run.applyEdit(away), InputError);
+    EXPECT_EQ(test::maxAbsDifference(run.state(), before), 0.0f);
+    EXPECT_TRUE(run.edits().empty());
+
+    // In JSON: a canvas session, a zero direction and a factor out of range are refused by field.
+    Session flat = loadPreset("gs_coral");
+    flat.width = flat.height = 32;
+    nlohmann::json j = sessionToJson(flat);
+    j["edits"] = nlohmann::json::parse(
+        R"([{"step": 1, "deform": {"centre": [0, 0, 0], "direction": [1, 0, 0], "radius": 0.2}}])");
+    const auto refusal = [](const nlohmann::json& json) -> std::string {
+        try {
+            Session bad = sessionFromJson(json, "deform.json");
+            validateSession(bad, "deform.json");
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_NE(refusal(j).find("without a mesh"), std::string::npos) << refusal(j);
+    Session mesh = sphereSession();
+    nlohmann::json m = sessionToJson(mesh);
+    m["edits"] = nlohmann::json::parse(
+        R"([{"step": 1, "deform": {"centre": [0, 0, 0], "direction": [0, 0, 0], "radius": 0.2}}])");
+    EXPECT_NE(refusal(m).find("direction"), std::string::npos) << refusal(m);
+    m["edits"][0]["deform"]["direction"] = {1, 0, 0};
+    m["edits"][0]["deform"]["factor"] = 9;
+    EXPECT_NE(refusal(m).find("factor"), std::string::npos) << refusal(m);
+}

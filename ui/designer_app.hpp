@@ -35,6 +35,11 @@ struct BrushSettings {
     float falloff = 0.5f;
     std::uint64_t seed = 1;
     bool localized = true; // on a model: re-grow locally after a stroke (Lo's localized RD)
+    // On a model: a left drag deforms instead of painting (Lo 5.5): the slab
+    // across the model at the drag's start, along the drag, half width the
+    // brush radius, stretched by `stretch` (below 1 compresses).
+    bool deform = false;
+    float stretch = 1.5f;
 };
 
 // A long job on a worker thread (an export at a large size): progress for
@@ -140,6 +145,10 @@ private:
     void drawCanvas(float x, float y, float w, float h);
     void drawModelView(float x, float y, float w, float h);
     void renderModelView(int width, int height);
+    // The 3D view follows the live session's surface (deformations).
+    void syncSurface();
+    // The deform tool's drag on the 3D view (the point under the cursor).
+    void deformDrag(const std::optional<Eigen::Vector3f>& hit, double worldRadius);
     // Washes the localized re-growth's active tiles towards orange.
     void tintActiveTiles(std::vector<std::array<std::uint8_t, 4>>& colours,
                          const Atlas& atlas) const;
@@ -199,6 +208,9 @@ private:
     std::unique_ptr<BackgroundJob> m_job;
     Thumbnails m_thumbnails;
     std::shared_ptr<const SurfaceSetup> m_surface; // the open session's mesh and tiles, or null
+    std::shared_ptr<const SurfaceGeometry> m_shownGeometry;  // the live surface m_surface is
+    std::optional<Eigen::Vector3f> m_deformFrom, m_deformTo; // a deform drag on the model
+    std::array<float, 2> m_deformStartScreen{};              // screen pixels
     Orbit m_orbit;
     gl::Texture2D m_modelImage;
     std::unique_ptr<gl::SurfaceRenderer> m_modelRenderer;   // of m_modelRendererFor's mesh

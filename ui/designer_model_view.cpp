@@ -10,6 +10,7 @@
 #include <glad/gl.h>
 #include <imgui.h>
 
+#include "core/surface/mesh_surface.hpp"
 #include "core/surface/surface_colours.hpp"
 #include "core/surface/textured_surface.hpp"
 #include "gl/surface_view.hpp"
@@ -31,6 +32,7 @@ void Designer::drawModelView(float x, float y, float w, float h) {
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const ImVec2 size = ImGui::GetContentRegionAvail();
     m_modelRect = {origin.x, origin.y, size.x, size.y};
+    syncSurface();
     if (!m_surface || !m_doc.isOpen() || size.x < 16 || size.y < 16) {
         ImGui::End();
         return;
@@ -63,8 +65,10 @@ void Designer::drawModelView(float x, float y, float w, float h) {
         hit = gl::pickSurface(m_surface->mesh.mesh, m_modelBounds, m_modelView,
                               io.MousePos.x - origin.x, io.MousePos.y - origin.y);
     const double worldRadius = m_brush.radius * 2.0 * m_modelBounds.radius;
-    if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && hit &&
-        !m_scrub) {
+    if (m_brush.deform) {
+        deformDrag(hit, worldRadius);
+    } else if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && hit &&
+               !m_scrub) {
         StrokeSpec stroke = strokeFromBrush();
         ++m_brush.seed;
         stroke.surface = true;
@@ -107,6 +111,56 @@ void Designer::drawModelView(float x, float y, float w, float h) {
     ImGui::TextDisabled("%s  |  left drag paints, right drag orbits, wheel zooms, F frames",
                         m_doc.session().surface.mesh.c_str());
     ImGui::End();
+}
+
+void Designer::syncSurface() {
+    if (!m_surface || !m_doc.isOpen() || m_doc.live().surfaceGeometry == m_shownGeometry)
+        return;
+    m_shownGeometry = m_doc.live().surfaceGeometry;
+    if (auto mesh = std::dynamic_pointer_cast<const MeshSurface>(m_shownGeometry)) {
+        m_surface = mesh->setup();
+        m_modelStale = true;
+    }
+}
+
+void Designer::deformDrag(const std::optional<Eigen::Vector3f>& hit, double worldRadius) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && hit &&
+        !m_scrub) {
+        m_deformFrom = hit;
+        m_deformStartScreen = {io.MousePos.x, io.MousePos.y};
+    }
+    if (!m_deformFrom)
+        return;
+    if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+        if (hit)
+            m_deformTo = hit;
+        // The drag as a line from where it started.
+        ImGui::GetWindowDrawList()->AddLine(ImVec2(m_deformStartScreen[0], m_deformStartScreen[1]),
+                                            io.MousePos, IM_COL32(255, 180, 60, 220), 2.0f);
+        return;
+    }
+    // Released: the slab at the start, along the drag.
+    const Eigen::Vector3f from = *m_deformFrom;
+    const std::optional<Eigen::Vector3f> to = m_deformTo;
+    m_deformFrom.reset();
+    m_deformTo.reset();
+    if (!to || (*to - from).norm() < 1e-3f * float(m_modelBounds.radius)) {
+        m_status = "deform: drag along the model to give the direction";
+        return;
+    }
+    const Eigen::Vector3f direction = (*to - from).normalized();
+    DeformSpec spec;
+    spec.centre = {from.x(), from.y(), from.z()};
+    spec.direction = {direction.x(), direction.y(), direction.z()};
+    spec.radius = worldRadius;
+    spec.factor = m_brush.stretch;
+    guarded("deform", [&] {
+        m_doc.deform(spec);
+        m_status = "deformed: stretched by " + std::to_string(m_brush.stretch).substr(0, 4) +
+                   "; the pattern re-grows there";
+    });
+    m_modelStale = true;
 }
 
 void Designer::tintActiveTiles(std::vector<std::array<std::uint8_t, 4>>& colours,

@@ -400,6 +400,15 @@ void Designer::drawBrushSection() {
                 "fast on a settled pattern; the rest of the model waits meanwhile.");
         ImGui::SameLine();
         ImGui::Checkbox("show active tiles", &m_showActiveTiles);
+        ImGui::Checkbox("deform", &m_brush.deform);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Left drag on the model stretches it instead of painting (Lo 5.5): "
+                              "the slab across the model where the drag starts, along the drag, "
+                              "as wide as the brush; the pattern re-grows there.");
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
+        ImGui::SliderFloat("stretch", &m_brush.stretch, float(kMinDeformFactor),
+                           float(kMaxDeformFactor), "x %.2f", ImGuiSliderFlags_Logarithmic);
     }
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("Left drag paints, right or middle drag pans, the wheel zooms, [ and ] "

@@ -276,6 +276,26 @@ void Document::save(const std::string& path) {
     m_dirty = false;
 }
 
+void Document::deform(const DeformSpec& spec) {
+    assert(m_run && !m_stroke);
+    auto before = std::make_shared<RunCheckpoint>(m_run->checkpoint());
+    auto apply = [this, spec] {
+        LiveEdit e;
+        e.deform = spec;
+        m_run->applyEdit(std::move(e));
+        changed();
+    };
+    apply();
+    // Undo returns to the moment before, surface and state; redo deforms
+    // again where the run is then (as a stroke's redo paints again).
+    push({"deform",
+          [this, before] {
+              m_run->restore(*before);
+              changed();
+          },
+          apply});
+}
+
 void Document::recordSnapshot() {
     if (!m_history.empty() && m_history.lastStep() >= steps())
         return;

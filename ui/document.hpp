@@ -99,6 +99,11 @@ public:
     // report) recompute only when it moves.
     std::uint64_t revision() const { return m_revision; }
 
+    // Deforms the model's surface (a live edit, LiveEdit::deform): the
+    // pattern re-grows there. Undoable; throws InputError (nothing changed)
+    // for a deformation the engine refuses.
+    void deform(const DeformSpec& spec);
+
     // Growth history: checkpoints taken as the pattern grows (growth_history.hpp:
     // a memory budget, then a spill folder on disk, then thinning). Scrubbing
     // shows one; branch() continues from it (the run forgets what came after

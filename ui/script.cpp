@@ -32,6 +32,7 @@ const std::map<std::string, std::pair<int, int>> kVerbs = {
     {"drag", {4, 5}},
     {"hover", {2, 2}},
     {"drag-model", {4, 5}},
+    {"deform", {1, 1}},
     {"tab", {1, 1}},
     {"restore-autosave", {0, 0}},
     {"crash", {0, 0}},
@@ -208,9 +209,24 @@ bool ScriptPlayer::start(Designer& d, const ScriptCommand& c) {
                     b.radius = float(number(c, a[i + 1]));
                 else if (key == "falloff")
                     b.falloff = float(number(c, a[i + 1]));
+                else if (key == "localized")
+                    b.localized = number(c, a[i + 1]) != 0;
                 else
                     throw InputError("brush setting '" + key +
-                                     "' (accepted: chemical, param, value, radius, falloff)");
+                                     "' (accepted: chemical, param, value, radius, falloff, "
+                                     "localized)");
+            }
+        } else if (c.verb == "deform") {
+            // The brush panel's deform tool: on with a stretch factor, or off.
+            BrushSettings& b = d.brush();
+            b.deform = a[0] != "off";
+            if (b.deform) {
+                const double f = number(c, a[0]);
+                if (f < kMinDeformFactor || f > kMaxDeformFactor)
+                    throw InputError("deform " + a[0] + ": a stretch factor in " +
+                                     std::to_string(kMinDeformFactor) + ".." +
+                                     std::to_string(kMaxDeformFactor) + ", or off");
+                b.stretch = float(f);
             }
         } else if (c.verb == "drag" || c.verb == "drag-model") {
             if (c.verb == "drag-model" && !d.hasModel())

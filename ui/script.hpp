@@ -19,7 +19,8 @@ class Designer;
 //   frames N                    let N frames pass
 //   until-step N                let frames pass until the run reaches step N (plays)
 //   param NAME VALUE            set a parameter (one undo step, as a typed value)
-//   brush MODE [chemical NAME] [param NAME] [value V] [radius R] [falloff F]
+//   brush MODE [chemical NAME] [param NAME] [value V] [radius R] [falloff F] [localized 0|1]
+//   deform FACTOR|off           the deform tool (drag-model stretches the model) or painting
 //   drag X0 Y0 X1 Y1 [FRAMES]   left-drag over the canvas, in canvas fractions (0..1)
 //   hover X Y                   rest the pointer there (outside 0..1: off the canvas)
 //   drag-model X0 Y0 X1 Y1 [FRAMES]  left-drag over the 3D view, in fractions of it

@@ -132,6 +132,32 @@ StrokeSpec strokeFromJson(const FieldReader& edit, const json& block,
     return s;
 }
 
+std::array<double, 3> vectorField(const FieldReader& reader, const char* name,
+                                  const std::string& expected) {
+    const json* v = reader.find(name);
+    bool ok = v && v->is_array() && v->size() == 3;
+    for (std::size_t k = 0; ok && k < 3; ++k)
+        ok = (*v)[k].is_number() && std::abs((*v)[k].get<double>()) <= kMaxLength;
+    if (!ok)
+        reader.failField(name, expected + (v ? ", got " + v->dump() : std::string()));
+    return {(*v)[0].get<double>(), (*v)[1].get<double>(), (*v)[2].get<double>()};
+}
+
+DeformSpec deformFromJson(const FieldReader& edit, const json& block) {
+    FieldReader reader(block, edit.source(), edit.path("deform"));
+    reader.rejectUnknown({"centre", "direction", "radius", "factor"});
+    DeformSpec d;
+    d.centre = vectorField(reader, "centre", "must be [x, y, z] on the mesh (its coordinates)");
+    d.direction = vectorField(reader, "direction", "must be a non-zero [x, y, z] direction");
+    if (d.direction == std::array<double, 3>{0, 0, 0})
+        reader.failField("direction", "must not be zero");
+    if (!reader.find("radius"))
+        reader.failField("radius", "is missing (the slab's half width, mesh units)");
+    d.radius = reader.number("radius", d.radius, 1e-9, kMaxLength);
+    d.factor = reader.number("factor", d.factor, kMinDeformFactor, kMaxDeformFactor);
+    return d;
+}
+
 json strokeToJson(const StrokeSpec& s) {
     json j;
     j["mode"] = toString(s.mode);
@@ -171,7 +197,8 @@ bool StrokeSpec::operator==(const StrokeSpec& o) const {
 }
 
 bool LiveEdit::operator==(const LiveEdit& o) const {
-    return step == o.step && params == o.params && dt == o.dt && stroke == o.stroke;
+    return step == o.step && params == o.params && dt == o.dt && stroke == o.stroke &&
+           deform == o.deform;
 }
 
 std::vector<LiveEdit> liveEditsFromJson(const FieldReader& top, const json& array,
@@ -183,7 +210,7 @@ std::vector<LiveEdit> liveEditsFromJson(const FieldReader& top, const json& arra
     std::vector<LiveEdit> edits;
     for (std::size_t i = 0; i < array.size(); ++i) {
         FieldReader reader(array[i], top.source(), "edits[" + std::to_string(i) + "]");
-        reader.rejectUnknown({"step", "params", "dt", "stroke"});
+        reader.rejectUnknown({"step", "params", "dt", "stroke", "deform"});
         LiveEdit e;
         if (!reader.find("step"))
             reader.failField("step", "is missing (the session step before which it applies)");
@@ -208,6 +235,8 @@ std::vector<LiveEdit> liveEditsFromJson(const FieldReader& top, const json& arra
             e.dt = float(reader.number("dt", 1.0, kMinDt, kMaxDt));
         if (const json* stroke = reader.find("stroke"))
             e.stroke = strokeFromJson(reader, *stroke, models);
+        if (const json* deform = reader.find("deform"))
+            e.deform = deformFromJson(reader, *deform);
         edits.push_back(std::move(e));
     }
     return edits;
@@ -224,6 +253,11 @@ json liveEditsToJson(const std::vector<LiveEdit>& edits) {
             j["dt"] = *e.dt;
         if (e.stroke)
             j["stroke"] = strokeToJson(*e.stroke);
+        if (e.deform)
+            j["deform"] = {{"centre", e.deform->centre},
+                           {"direction", e.deform->direction},
+                           {"radius", e.deform->radius},
+                           {"factor", e.deform->factor}};
         array.push_back(std::move(j));
     }
     return array;
@@ -237,6 +271,10 @@ void checkLiveEdits(const Session& s, long long totalSteps, const std::string& s
                          " comes after the session's last step (" + std::to_string(totalSteps) +
                          "): edits apply before a step the session runs, or at its end");
     for (const LiveEdit& e : s.edits) {
+        if (e.deform && !s.surface.active())
+            throw InputError(source + ": edit at step " + std::to_string(e.step) +
+                             ": a deformation in a session without a mesh (no \"surface\" "
+                             "block)");
         if (!e.stroke)
             continue;
         if (!e.stroke->surface && s.surface.active())

@@ -10,6 +10,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "core/session/brush_mode.hpp"
+#include "core/session/surface_geometry.hpp"
 
 namespace morphogen {
 
@@ -53,6 +54,10 @@ struct StrokeSpec {
     bool operator==(const StrokeSpec& o) const;
 };
 
+// The stretch factors a deformation accepts (below 1 compresses).
+constexpr double kMinDeformFactor = 0.5;
+constexpr double kMaxDeformFactor = 4.0;
+
 // A change made while the session ran (the designer's sliders and brushes),
 // recorded so that the session reproduces the run: before session step
 // `step` (counted over the whole session, cascade stages included), set the
@@ -62,6 +67,10 @@ struct LiveEdit {
     ParamValues params;      // the parameters it changes; the others keep their values
     std::optional<float> dt; // a new session time step
     std::optional<StrokeSpec> stroke;
+    // On a surface: the mesh deformed there (Lo 5.5); the metric is
+    // recomputed and the pattern re-grows there with localized re-growth.
+    // Applied first, before the parameters, dt and stroke.
+    std::optional<DeformSpec> deform;
 
     bool operator==(const LiveEdit& o) const;
 };

@@ -19,6 +19,7 @@
 #include "core/session/height_spec.hpp"
 #include "core/session/live_edit.hpp"
 #include "core/session/param_map.hpp"
+#include "core/session/surface_geometry.hpp"
 #include "core/session/surface_spec.hpp"
 #include "core/session/tile_grid.hpp"
 
@@ -120,6 +121,9 @@ struct Session {
     // strokes on the surface land; set with the atlas from a mesh, not
     // serialised (null: none).
     std::shared_ptr<const std::vector<std::array<float, 3>>> atlasPositions;
+    // The surface itself, for deformations while the session runs
+    // (LiveEdit::deform); set with the atlas from a mesh, not serialised.
+    std::shared_ptr<const SurfaceGeometry> surfaceGeometry;
 
     // The grid, the tiled grid of a batched sweep, or the atlas.
     Domain domain() const;

@@ -10,6 +10,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/names.hpp"
 #include "core/domain/atlas.hpp"
+#include "core/domain/atlas_weights.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/numerics/resample.hpp"
 #include "core/operators/stability.hpp"
@@ -216,6 +217,14 @@ void SessionRun::applyDueEdits() {
 }
 
 void SessionRun::applyNow(const LiveEdit& edit, bool follow) {
+    // A deformation first: worked out before anything changes (it may be
+    // refused), and its rebuild replays the edits before this one.
+    std::vector<int> deformed;
+    if (edit.deform) {
+        const DeformedSurface d = deformSurface(*edit.deform);
+        useDeformedSurface(d);
+        deformed = d.deformedTiles;
+    }
     if (!edit.params.empty())
         setParams(edit.params);
     if (edit.dt)
@@ -226,19 +235,28 @@ void SessionRun::applyNow(const LiveEdit& edit, bool follow) {
         m_simulator->applyBrush(*written);
     }
     if (follow)
-        followEdit(edit, written ? &*written : nullptr);
+        followEdit(edit, written ? &*written : nullptr, deformed);
 }
 
-void SessionRun::followEdit(const LiveEdit& edit, const Brush* written) {
+void SessionRun::followEdit(const LiveEdit& edit, const Brush* written,
+                            const std::vector<int>& deformed) {
     // New parameters or dt change the whole pattern: every tile steps.
-    if (!edit.params.empty() || edit.dt || !edit.stroke || !edit.stroke->localized) {
+    const bool localStroke = edit.stroke && edit.stroke->localized;
+    if (!edit.params.empty() || edit.dt || (edit.stroke && !localStroke) ||
+        (!edit.stroke && !edit.deform)) {
         endRegrowth();
         return;
     }
     const Atlas* atlas = segmentSession().domain().atlasMap();
-    if (!atlas) // a stroke parsed as localized is on a surface: the session has an atlas
+    if (!atlas) // localized strokes and deformations are on a surface: there is an atlas
         return;
-    const std::vector<int> touched = touchedTiles(*atlas, written->region);
+    std::vector<int> touched = deformed;
+    if (written) {
+        const std::vector<int> stroked = touchedTiles(*atlas, written->region);
+        touched.insert(touched.end(), stroked.begin(), stroked.end());
+        std::sort(touched.begin(), touched.end());
+        touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    }
     if (touched.empty())
         return; // a piece that changed nothing (its path covered already)
     if (m_regrowth) {
@@ -248,7 +266,14 @@ void SessionRun::followEdit(const LiveEdit& edit, const Brush* written) {
             m_neighbourhoods = std::make_shared<const TileNeighbourhoods>(*atlas);
             m_neighbourhoodsOf = atlas;
         }
-        m_regrowth.emplace(m_neighbourhoods, segmentSession().domain().sharedAtlas(), touched);
+        // Changes per session step, as the artist's steps count: a run split into
+        // substeps changes by 1/substeps as much per simulator step.
+        LocalRegrowthOptions options;
+        const float perStep = 1.0f / float(substeps());
+        options.settledBelow *= perStep;
+        options.spreadAbove *= perStep;
+        m_regrowth.emplace(m_neighbourhoods, segmentSession().domain().sharedAtlas(), touched,
+                           options);
     }
     m_simulator->setActiveTiles(m_regrowth->over() ? std::vector<int>{} : m_regrowth->tiles());
     if (m_regrowth->over())
@@ -299,6 +324,68 @@ void SessionRun::applyEdit(LiveEdit edit) {
     m_applied.push_back(std::move(edit));
 }
 
+void SessionRun::takeSurface(Session& session, const Session& from) {
+    if (session.surfaceGeometry == from.surfaceGeometry)
+        return;
+    useAtlas(session, from.atlas, from.atlasWeights);
+    session.atlasPositions = from.atlasPositions;
+    session.surfaceGeometry = from.surfaceGeometry;
+}
+
+void SessionRun::rebuildSegment() {
+    // The current segment's session as entered (on its current surface), then
+    // every edit made in it but the chemical strokes (the state holds those)
+    // and the deformations (the surface holds those): parameters, dt, painted
+    // maps and held cells come back as they were made, in order (a map painted
+    // before a parameter change starts from the old value).
+    m_simulator.reset();
+    m_simulator = m_make(m_segments[m_index].session);
+    m_simulator->setFrozen(m_frozen);
+    const long long start = segmentStartStep();
+    for (const LiveEdit& e : m_applied) {
+        if (e.step < start)
+            continue;
+        LiveEdit replay = e;
+        if (replay.stroke && writesChemical(replay.stroke->mode))
+            replay.stroke.reset();
+        replay.deform.reset();
+        applyNow(replay, false);
+    }
+}
+
+DeformedSurface SessionRun::deformSurface(const DeformSpec& spec) const {
+    const Segment& segment = m_segments[m_index];
+    const Session& part = segment.session;
+    if (!part.surfaceGeometry)
+        throw InputError("a deformation needs a session on a mesh (a \"surface\" block)");
+    DeformedSurface d = part.surfaceGeometry->deformed(spec);
+    // The segment keeps its substeps (its steps are counted in them): a
+    // compression that needs more would blow the explicit step up.
+    if (part.integrator == Integrator::ExplicitEuler && d.weights) {
+        const int needed = weightedSubsteps(*d.weights);
+        if (needed > segment.substeps)
+            throw InputError("deformation: compressing by " + std::to_string(spec.factor) +
+                             " there needs " + std::to_string(needed) +
+                             " substeps per step and the run takes " +
+                             std::to_string(segment.substeps) +
+                             ": compress less (a factor nearer 1) or over a wider slab");
+    }
+    return d;
+}
+
+void SessionRun::useDeformedSurface(const DeformedSurface& d) {
+    const State state = m_simulator->state();
+    Session& session = m_segments[m_index].session;
+    session = m_entry.session;
+    useAtlas(session, session.atlas, d.weights);
+    session.atlasPositions = d.positions;
+    session.surfaceGeometry = d.geometry;
+    rebuildSegment();
+    m_simulator->setState(state);
+    if (m_regrowth)
+        m_simulator->setActiveTiles(m_regrowth->tiles());
+}
+
 RunCheckpoint SessionRun::checkpoint() const {
     RunCheckpoint c;
     c.index = m_index;
@@ -337,22 +424,10 @@ void SessionRun::restore(const RunCheckpoint& c) {
     }
     m_finished = false;
     m_state = State();
-    // The segment as entered, then every edit made in it but the chemical
-    // strokes (the state holds those): parameters, dt, painted maps and held
-    // cells come back as they were made, in order (a map painted before a
-    // parameter change starts from the old value).
+    // The segment as entered, on the surface as it was then (deformed).
     m_segments[m_index] = m_entry;
-    m_simulator = m_make(m_entry.session);
-    m_simulator->setFrozen(m_frozen);
-    const long long start = segmentStartStep();
-    for (const LiveEdit& e : m_applied) {
-        if (e.step < start)
-            continue;
-        LiveEdit replay = e;
-        if (replay.stroke && writesChemical(replay.stroke->mode))
-            replay.stroke.reset();
-        applyNow(replay, false);
-    }
+    takeSurface(m_segments[m_index].session, c.segments[m_index].session);
+    rebuildSegment();
     // What later levels had taken from live changes.
     for (std::size_t i = m_index + 1; i < m_segments.size(); ++i)
         m_segments[i] = c.segments[i];

@@ -164,7 +164,15 @@ private:
     // the localized re-growth as the edit asks (not when restore replays
     // edits: the checkpoint holds the re-growth).
     void applyNow(const LiveEdit& edit, bool follow = true);
-    void followEdit(const LiveEdit& edit, const Brush* written);
+    void followEdit(const LiveEdit& edit, const Brush* written, const std::vector<int>& deformed);
+    // Deformations (LiveEdit::deform): the deformed surface, refused
+    // (InputError) before anything changes; then the segment rebuilt on it.
+    DeformedSurface deformSurface(const DeformSpec& spec) const;
+    void useDeformedSurface(const DeformedSurface& d);
+    // The current segment's simulator made again from its session and the
+    // edits made in it (restore, deformations).
+    void rebuildSegment();
+    static void takeSurface(Session& session, const Session& from);
     // Counts steps run under a re-growth and updates the active tiles.
     void afterRegrowthSteps(int steps);
     void endRegrowth();

@@ -1,5 +1,7 @@
 #include "core/surface/surface_setup.hpp"
 
+#include "core/surface/mesh_surface.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -93,12 +95,12 @@ SurfaceSetup setUpSurface(Session& session,
         }
     setup.texelUnits = used ? std::sqrt(texelArea / double(used)) * setup.unitsPerWorld : 0;
     useAtlas(session, setup.tiles.atlas, setup.weights);
-    auto positions = std::make_shared<std::vector<std::array<float, 3>>>();
-    positions->reserve(setup.tiles.texelPositions.size());
-    for (const Eigen::Vector3f& p : setup.tiles.texelPositions)
-        positions->push_back({p.x(), p.y(), p.z()});
-    session.atlasPositions = std::move(positions);
+    session.atlasPositions = texelPositionsOf(setup.tiles);
     setup.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // The run's handle on the surface for deformations (a copy: the caller
+    // keeps its own setup).
+    session.surfaceGeometry =
+        std::make_shared<const MeshSurface>(std::make_shared<const SurfaceSetup>(setup), weights);
     return setup;
 }
 
