@@ -23,11 +23,6 @@ constexpr int kMaxAtlasSide = 65535;
 // Edges longer than this many times the equilateral edge of the budget's mean
 // triangle are split (Botsch and Kobbelt's isotropic remeshing uses 4/3).
 constexpr double kSplitLength = 4.0 / 3.0;
-// Rounds of flips and smoothing after the splits. Measured (morphogen tile-stats,
-// max / median texel weight sum at 4x4 and 16x16 tiles): 4 rounds leave the torus
-// at 8-9 (its simplified triangles' areas 0.2 to 2.4 times the median), 6 to 14
-// rounds bring it to 4.5 and the holes model from 6-8 to 5.5-7; 8 was best overall.
-constexpr int kImproveRounds = 8;
 
 // The most tiles of this size the limits and the atlas side allow.
 long long maxTiles(int tileSize) {
@@ -146,7 +141,7 @@ SurfaceTiles buildSurfaceTiles(const TriangleMesh& full, const TileOptions& opti
                 simplified = std::move(fewer);
         }
         splitLongEdges(simplified, projector, maxLength, target);
-        improveForTiles(simplified, projector, kImproveRounds);
+        improveForTiles(simplified, projector);
     }
     SurfaceTiles out = splitIntoTiles(simplified, options.tileSize);
     report("projection", 0);
