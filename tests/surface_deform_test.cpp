@@ -158,8 +158,13 @@ TEST(SurfaceDeform, StretchedSpotsKeepTheirWorldSize) {
     // The band's meridians stretch by about 1.5 (the sphere's tangent there is tilted from
     // z), so the stretched pattern has some 2/3 of the spots per area (measured 0.66).
     EXPECT_LT(stretchedOnly.perWorldArea / before.perWorldArea, 0.75);
-    // World size kept: spots per world area within 15% of before (measured: 1.007).
-    EXPECT_NEAR(after.perWorldArea / before.perWorldArea, 1.0, 0.15);
+    // World size kept: spots per world area within 20% of before, against 0.66 for the
+    // stretched pattern. The region holds some 20-24 spots, so the ratio is noisy: on the
+    // tiles of issue #11 (docs/tile_quality.md) seeds 1, 2, 3 measured 1.19, 1.15 and 0.97
+    // (the same re-grown density as before those tiles, 25.4 against 25.3 per area at
+    // seed 1; the settled pattern's count in the region differs by a spot or two); the
+    // tiles before measured 1.10 at seed 1.
+    EXPECT_NEAR(after.perWorldArea / before.perWorldArea, 1.0, 0.2);
     // So in texels each spot is smaller: about 1.5x the spots per texel (measured 1.53).
     EXPECT_GT(after.perTexel / before.perTexel, 1.3);
 

@@ -17,6 +17,8 @@ void addSweepCommand(CLI::App& app);
 void addColourCommand(CLI::App& app);
 // mesh-info, and the hidden mesh-gen that writes the sample meshes.
 void addMeshCommands(CLI::App& app);
+// The hidden tile-stats: per-texel weight sums and their culprits (development).
+void addTileStatsCommand(CLI::App& app);
 // The interactive designer (ui/): a window.
 void addDesignCommand(CLI::App& app);
 

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
     morphogen::cli::addSweepCommand(app);
     morphogen::cli::addColourCommand(app);
     morphogen::cli::addMeshCommands(app);
+    morphogen::cli::addTileStatsCommand(app);
     morphogen::cli::addDesignCommand(app);
     try {
         app.parse(argc, argv);

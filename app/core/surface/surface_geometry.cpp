@@ -150,6 +150,8 @@ private:
             const std::size_t e = std::size_t(id - m_nv);
             b[slot(m_edges.lowVertex(e))] = 0.5f;
             b[slot(m_edges.highVertex(e))] = 0.5f;
+        } else if (!m_tiles.splitBarycentric.empty()) {
+            b = m_tiles.splitBarycentric[tri];
         } else {
             b.setConstant(1.0f / 3.0f);
         }

@@ -19,14 +19,17 @@ struct TileOptions {
 };
 
 // A triangle mesh covered by square tiles: every triangle of the simplified
-// mesh is split into three quads (corner, edge midpoint, centroid, edge
-// midpoint), each quad an n x n tile of the atlas. Everything geometric is in
+// mesh is split into three quads (corner, edge midpoint, an interior split
+// point, edge midpoint), each quad an n x n tile of the atlas. Everything geometric is in
 // the mesh's own (world) units.
 struct SurfaceTiles {
     TriangleMesh simplified; // the mesh the tiles were laid on
     // The quads' corner points: the simplified mesh's vertices, then one point
-    // per edge (its midpoint), then one per triangle (its centroid).
+    // per edge (its midpoint), then one per triangle (its split point).
     std::vector<Eigen::Vector3f> quadVertices;
+    // Per simplified triangle: its split point's barycentric coordinates
+    // (quadSplitPoint, tile_split.hpp); empty means the centroids.
+    std::vector<Eigen::Vector3f> splitBarycentric;
     // Per tile: its corners 0..3 (counter-clockwise in the tile frame, see
     // atlas.hpp) as indices into quadVertices; the input of Atlas::fromQuads.
     std::vector<std::array<int, 4>> quads;

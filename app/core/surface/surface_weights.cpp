@@ -20,7 +20,8 @@ constexpr double kCrossCap = 0.9;
 // the median one (see surfaceWeights).
 // Measured on the sample meshes (surface_curvature_spots_holes, 4x4 tiles):
 // the substeps stay 22 (holes), 11 (torus), 16 (blob, 15 without the cross
-// term) and 3 (sphere, 2 without).
+// term) and 3 (sphere, 2 without); with the better-shaped tiles of issue #11
+// (docs/tile_quality.md) 9, 4, 6 and 2 with the cross term.
 constexpr double kCrossGrowth = 2.0;
 
 double median(std::vector<double> v) {

@@ -56,7 +56,9 @@ struct SurfaceWeightOptions {
 // width, count as that floor. The few texels folded or squeezed where a
 // simplified triangle spans a smaller feature would otherwise force a time
 // step hundreds of times smaller; with the floors the largest coefficient sum
-// stays within some 20x the median on the sample meshes. The floored values
+// stayed within some 20x the median on the sample meshes, and since the tiles'
+// triangles are evened out (docs/tile_quality.md) within 4-8x (without a
+// curvature scale; the floors are then rarely reached). The floored values
 // serve both sides of a pair, so conservation holds. Unused cells get zeros.
 // Throws InputError if unitsPerWorld is not positive and finite, or if
 // featureScale has the wrong size or a value that is not positive and finite.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
 #include "core/base/errors.hpp"
@@ -11,6 +12,7 @@
 #include "core/surface/mesh_simplify.hpp"
 #include "core/surface/surface_geometry.hpp"
 #include "core/surface/tile_mesh_quality.hpp"
+#include "core/surface/tile_split.hpp"
 
 namespace morphogen {
 
@@ -18,6 +20,9 @@ namespace {
 
 constexpr int kAutomaticTiles = 2000;
 constexpr int kMaxAtlasSide = 65535;
+// Edges longer than this many times the equilateral edge of the budget's mean
+// triangle are split (Botsch and Kobbelt's isotropic remeshing uses 4/3).
+constexpr double kSplitLength = 4.0 / 3.0;
 
 // The most tiles of this size the limits and the atlas side allow.
 long long maxTiles(int tileSize) {
@@ -66,22 +71,27 @@ SurfaceTiles splitIntoTiles(const TriangleMesh& mesh, int tileSize) {
     for (int e = 0; e < ne; ++e)
         out.quadVertices.push_back(
             0.5f * (mesh.positions[edges.lowVertex(e)] + mesh.positions[edges.highVertex(e)]));
-    for (const auto& t : mesh.triangles)
-        out.quadVertices.push_back(
-            (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0f);
+    out.splitBarycentric.reserve(mesh.triangles.size());
+    for (const auto& t : mesh.triangles) {
+        const Eigen::Vector3f &a = mesh.positions[t[0]], &b = mesh.positions[t[1]],
+                              &c = mesh.positions[t[2]];
+        const Eigen::Vector3f w = quadSplitPoint(a, b, c);
+        out.splitBarycentric.push_back(w);
+        out.quadVertices.push_back(w[0] * a + w[1] * b + w[2] * c);
+    }
 
     out.quads.reserve(3 * mesh.triangles.size());
     out.tileTriangle.reserve(3 * mesh.triangles.size());
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const auto& tri = mesh.triangles[t];
-        const int centroid = nv + ne + int(t);
+        const int split = nv + ne + int(t);
         for (int k = 0; k < 3; ++k) {
             // Corner k's quad: its vertex, the midpoint of the edge leaving it
-            // (k -> k+1, used by corner k), the centroid, the midpoint of the
+            // (k -> k+1, used by corner k), the split point, the midpoint of the
             // edge arriving (k+2 -> k, used by corner k+2): the triangle's sense.
             const int leaving = nv + int(edges.edgeOf(t, k));
             const int arriving = nv + int(edges.edgeOf(t, (k + 2) % 3));
-            out.quads.push_back({int(tri[k]), leaving, centroid, arriving});
+            out.quads.push_back({int(tri[k]), leaving, split, arriving});
             out.tileTriangle.push_back(std::uint32_t(t));
         }
     }
@@ -116,8 +126,23 @@ SurfaceTiles buildSurfaceTiles(const TriangleMesh& full, const TileOptions& opti
 
     report("tiles", 0);
     const MeshProjector projector(full);
-    if (stats.simplified)
+    if (stats.simplified) {
+        // Room for splitting the long edges within the budget: simplify further by
+        // as many triangles as the splits would add (a dry run says how many).
+        const std::size_t target = std::max(std::size_t(budget / 3), simplified.triangles.size());
+        const double maxLength = kSplitLength * tileEdgeLength(simplified, target);
+        TriangleMesh trial = simplified;
+        splitLongEdges(trial, projector, maxLength, SIZE_MAX);
+        if (trial.triangles.size() > target) {
+            SimplifyStats again;
+            TriangleMesh fewer =
+                simplifyForTiles(full, target * target / trial.triangles.size(), &again);
+            if (again.simplified && fewer.triangles.size() < simplified.triangles.size())
+                simplified = std::move(fewer);
+        }
+        splitLongEdges(simplified, projector, maxLength, target);
         improveForTiles(simplified, projector);
+    }
     SurfaceTiles out = splitIntoTiles(simplified, options.tileSize);
     report("projection", 0);
     computeSurfaceGeometry(out, full, projector, [&](double f) { report("projection", f); });

@@ -28,12 +28,18 @@ using TileProgress = std::function<void(const std::string& phase, double fractio
 // From a welded manifold mesh (loadMesh's output; open boundaries, several
 // components and any genus accepted) to tiles with their geometry:
 //  1. simplify to tiles / 3 triangles (simplifyForTiles; a mesh under budget
-//     is kept as it is), then, if it was simplified, reshape its triangles
-//     into better tiles on the full mesh (improveForTiles: edge flips and
-//     tangential smoothing, same topology),
+//     is kept as it is), then, if it was simplified, even out its triangles'
+//     sizes and shapes on the full mesh, keeping its topology: split its long
+//     edges (splitLongEdges: over 4/3 of the budget's equilateral edge; the
+//     simplification is redone to that many fewer triangles first, so the
+//     budget holds), then edge flips and area-evening tangential smoothing
+//     (improveForTiles). The explicit step is limited by the smallest texels,
+//     and a simplifier leaves flat regions in long, thin triangles and curved
+//     ones in small ones,
 //  2. split each triangle (a, b, c) into the quads (a, m_ab, g, m_ca),
 //     (b, m_bc, g, m_ab), (c, m_ca, g, m_bc) (m: edge midpoints, g: the
-//     centroid), which run round in the triangle's own sense, so tiles of
+//     split point, the centroid unless the triangle is badly shaped:
+//     quadSplitPoint), which run round in the triangle's own sense, so tiles of
 //     neighbouring triangles are glued properly (not mirrored) on an
 //     orientable mesh; tile 3t + k is corner k of triangle t,
 //  3. glue them into an atlas (Atlas::fromQuads),

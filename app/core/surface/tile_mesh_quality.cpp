@@ -131,10 +131,22 @@ std::size_t relaxPass(TriangleMesh& mesh, const MeshProjector& full) {
     for (std::uint32_t v = 0; v < nv; ++v) {
         if (boundary[v] || neighbours[v].empty())
             continue;
-        Eigen::Vector3f centre = Eigen::Vector3f::Zero();
-        for (std::uint32_t w : neighbours[v])
-            centre += mesh.positions[w];
-        centre /= float(neighbours[v].size());
+        // The area-weighted mean of the centroids of its triangles: a vertex moves
+        // towards its larger triangles, which evens out the triangles' areas (and so
+        // the texels', whose smallest set the time step), not only the edge lengths.
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        double weight = 0;
+        for (std::uint32_t t : around[v]) {
+            const auto& tri = mesh.triangles[t];
+            const Eigen::Vector3f &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]],
+                                  &p2 = mesh.positions[tri[2]];
+            const double area = 0.5 * normalOf(p0, p1, p2).norm();
+            sum += area * ((p0 + p1 + p2) / 3.0f).cast<double>();
+            weight += area;
+        }
+        if (!(weight > 0))
+            continue;
+        const Eigen::Vector3f centre = (sum / weight).cast<float>();
         const Eigen::Vector3f n = normals[v];
         Eigen::Vector3f delta = centre - mesh.positions[v];
         delta -= n * n.dot(delta);
@@ -162,7 +174,83 @@ std::size_t relaxPass(TriangleMesh& mesh, const MeshProjector& full) {
     return moves;
 }
 
+// Splits each edge longer than maxLength at its midpoint (moved onto `full`
+// when that keeps its triangles facing as before), longest first, at most one
+// edge per triangle; stops before the mesh passes maxTriangles.
+std::size_t splitPass(TriangleMesh& mesh, const MeshProjector& full, double maxLength,
+                      std::size_t maxTriangles) {
+    const EdgeTable edges(mesh);
+    std::vector<std::pair<double, std::size_t>> candidates;
+    for (std::size_t e = 0; e < edges.edgeCount(); ++e) {
+        const double length = double(
+            (mesh.positions[edges.highVertex(e)] - mesh.positions[edges.lowVertex(e)]).norm());
+        if (length > maxLength)
+            candidates.emplace_back(length, e);
+    }
+    std::sort(candidates.begin(), candidates.end(),
+              [](const auto& x, const auto& y) { return x.first > y.first; });
+    std::vector<char> touched(mesh.triangles.size(), 0);
+    std::size_t splits = 0;
+    for (const auto& [length, e] : candidates) {
+        const std::size_t uses = edges.useCount(e);
+        if (mesh.triangles.size() + uses > maxTriangles)
+            break;
+        bool free = true;
+        for (auto u = edges.begin(e); u != edges.begin(e) + std::ptrdiff_t(uses); ++u)
+            free = free && !touched[u->triangle];
+        if (!free)
+            continue;
+        const Eigen::Vector3f mid =
+            0.5f * (mesh.positions[edges.lowVertex(e)] + mesh.positions[edges.highVertex(e)]);
+        Eigen::Vector3f at = full.closest(mid).position;
+        // On the surface unless that turns a new triangle over (an edge that cuts
+        // far through a concave region): the tiles are projected onto it anyway.
+        for (auto u = edges.begin(e); u != edges.begin(e) + std::ptrdiff_t(uses); ++u) {
+            const Tri& t = mesh.triangles[u->triangle];
+            const auto& p = mesh.positions;
+            const int k = u->corner;
+            const Eigen::Vector3d n = normalOf(p[t[0]], p[t[1]], p[t[2]]);
+            if (normalOf(p[t[k]], at, p[t[(k + 2) % 3]]).dot(n) <= 0 ||
+                normalOf(at, p[t[(k + 1) % 3]], p[t[(k + 2) % 3]]).dot(n) <= 0)
+                at = mid;
+        }
+        const auto m = std::uint32_t(mesh.positions.size());
+        mesh.positions.push_back(at);
+        for (auto u = edges.begin(e); u != edges.begin(e) + std::ptrdiff_t(uses); ++u) {
+            Tri& t = mesh.triangles[u->triangle];
+            const int k = u->corner;
+            const Tri second = {m, t[(k + 1) % 3], t[(k + 2) % 3]};
+            t = {t[k], m, t[(k + 2) % 3]};
+            mesh.triangles.push_back(second);
+            touched[u->triangle] = 1;
+            touched.push_back(1);
+        }
+        ++splits;
+    }
+    return splits;
+}
+
 } // namespace
+
+std::size_t splitLongEdges(TriangleMesh& mesh, const MeshProjector& full, double maxLength,
+                           std::size_t maxTriangles) {
+    std::size_t splits = 0;
+    for (int pass = 0; pass < 16; ++pass) {
+        const std::size_t n = splitPass(mesh, full, maxLength, maxTriangles);
+        if (n == 0)
+            break;
+        splits += n;
+    }
+    return splits;
+}
+
+double tileEdgeLength(const TriangleMesh& mesh, std::size_t triangles) {
+    double area = 0;
+    for (const Tri& t : mesh.triangles)
+        area +=
+            0.5 * normalOf(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]).norm();
+    return triangles > 0 ? std::sqrt(4 * area / (std::sqrt(3.0) * double(triangles))) : 0.0;
+}
 
 double minimumAngle(const TriangleMesh& mesh) {
     double smallest = 180;
