@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/models/initial_condition.hpp"
 #include "core/models/watercolour.hpp"
@@ -35,7 +36,7 @@ TEST(WatercolourGl, ConservesWaterAndPigment) {
     test::glContext();
     for (EdgeMode edges : {EdgeMode::Periodic, EdgeMode::Clamped}) {
         SCOPED_TRACE(toString(edges));
-        Session s = sessionFromJson({{"model", "watercolour"}}, "conservation");
+        Session s = sessionFromJson(nlohmann::json{{"model", "watercolour"}}, "conservation");
         s.width = 48;
         s.height = 40;
         s.edges = edges;
@@ -66,7 +67,7 @@ TEST(WatercolourGl, ConservesWaterAndPigment) {
 // rounding (1 of 255 per channel).
 TEST(WatercolourGl, GpuDisplayPaintsAsTheImageWriter) {
     test::glContext();
-    Session s = sessionFromJson({{"model", "watercolour"}}, "display");
+    Session s = sessionFromJson(nlohmann::json{{"model", "watercolour"}}, "display");
     s.width = 40;
     s.height = 32;
     s.init.inside["p2"] = 0.4f;
