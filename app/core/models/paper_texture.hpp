@@ -11,10 +11,10 @@ namespace morphogen {
 // directions, as pressed cellulose fibres lie in every direction).
 struct PaperSpec {
     std::uint64_t seed = 1;
-    float mean = 0.6f;   // the stickiness of smooth paper
-    float grain = 0.3f;  // relative amplitude of the tooth
-    float fibres = 0.3f; // relative amplitude of the fibres
-    float scale = 3.0f;  // cells per grain; fibres are ~6x longer
+    float mean = 0.6f;    // the stickiness of smooth paper
+    float grain = 0.3f;   // relative amplitude of the tooth
+    float fibres = 0.15f; // relative amplitude of the fibres
+    float scale = 3.0f;   // cells per grain; fibres are ~6x longer
 };
 
 // Row-major width x height values in [0.02, 1]: never 0, so every wet cell

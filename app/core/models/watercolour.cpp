@@ -34,7 +34,7 @@ WatercolourModel::WatercolourModel() {
          "rate pigment settles where the water is thin (below `dry`), times stickiness"},
         {"paper_mean", 0.6f, 0.02f, 1.0f, "stickiness of the generated paper"},
         {"paper_grain", 0.3f, 0.0f, 2.0f, "relative strength of the paper's tooth"},
-        {"paper_fibres", 0.3f, 0.0f, 2.0f, "relative strength of the paper's fibres"},
+        {"paper_fibres", 0.15f, 0.0f, 2.0f, "relative strength of the paper's fibres"},
         {"paper_scale", 3.0f, 0.5f, 64.0f, "cells per grain of the paper"}};
     m_displayChemical = D1;
     m_chemicals[W].displayRange = {0.0f, 2.0f};
