@@ -3,8 +3,10 @@
 #include <cassert>
 #include <string>
 
+#include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
 #include "core/output/colormap.hpp"
+#include "core/output/watercolour_paint.hpp"
 #include "gl/gpu_simulator.hpp"
 
 namespace morphogen::gl {
@@ -13,6 +15,7 @@ namespace {
 
 constexpr int kSourceUnit = 0;
 constexpr int kMinMaxUnit = 1;
+constexpr int kSecondStateUnit = 1; // the watercolour pass's second state texture
 
 int quarter(int n) {
     return (n + 3) / 4;
@@ -28,6 +31,16 @@ Display::Display(int width, int height)
     m_reduce = Program({vertex}, {embeddedShader("glsl/minmax.frag")}, {});
     m_colour = Program({vertex}, {embeddedShader("glsl/display.frag")},
                        {"MAX_ANCHORS " + std::to_string(kMaxColormapAnchors)});
+    m_watercolour = Program({vertex}, {embeddedShader("glsl/watercolour_display.frag")}, {});
+    m_watercolour.use();
+    glUniform1i(m_watercolour.uniform("uState0"), kSourceUnit);
+    glUniform1i(m_watercolour.uniform("uState1"), kSecondStateUnit);
+    const WatercolourLook look;
+    glUniform3fv(m_watercolour.uniform("uPaper"), 1, look.paper.data());
+    glUniform3fv(m_watercolour.uniform("uAbsorbance"), 2, look.absorbance[0].data());
+    glUniform1f(m_watercolour.uniform("uWetShare"), look.wetShare);
+    glUniform1f(m_watercolour.uniform("uSheen"), look.sheen);
+    glUniform1f(m_watercolour.uniform("uGrain"), look.grain);
     for (const Program* p : {&m_reduceFirst, &m_reduce}) {
         p->use();
         glUniform1i(p->uniform("uSource"), kSourceUnit);
@@ -57,6 +70,10 @@ void Display::render(const GpuSimulator& simulator, int chemical, const ColorMap
     assert(chemical >= 0 && chemical / 4 < simulator.stateTextureCount());
     assert(state.width() == m_width && state.height() == m_height);
     const std::vector<std::array<float, 3>> anchors = colormapAnchors(spec); // checks the name
+    if (isWatercolourMap(spec)) {
+        paint(simulator);
+        return;
+    }
     assert(anchors.size() >= 2 && anchors.size() <= std::size_t(kMaxColormapAnchors));
     m_vao.bind();
 
@@ -81,6 +98,20 @@ void Display::render(const GpuSimulator& simulator, int chemical, const ColorMap
     glUniform1i(m_colour.uniform("uAnchorCount"), GLint(anchors.size()));
     state.bind(kSourceUnit);
     m_levels.back().bind(kMinMaxUnit);
+    m_displayFramebuffer.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Display::paint(const GpuSimulator& simulator) {
+    // Sessions check the model (colormapFromJson); this guards the layout.
+    if (simulator.stateTextureCount() != 2)
+        throw InputError("colour map 'watercolour' paints the watercolour model's pigments; "
+                         "this simulation's model has none (use another map)");
+    m_vao.bind();
+    m_watercolour.use();
+    simulator.stateTexture(0).bind(kSourceUnit);
+    simulator.stateTexture(1).bind(kSecondStateUnit);
     m_displayFramebuffer.bind();
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

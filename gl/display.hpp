@@ -22,6 +22,8 @@ class GpuSimulator;
 // driver's float-to-unorm8 conversion (at most 1 of 255 per channel).
 // CPU path: applyColormap on the CPU, quantised as the PNG writer does
 // (toUnorm8), and only the display image uploaded.
+// The "watercolour" map paints the watercolour model's pigments on its paper
+// (core/output/watercolour_paint.hpp) from both state textures, on either path.
 // Needs a current context for its whole life.
 class Display {
 public:
@@ -41,7 +43,11 @@ private:
     VertexArray m_vao;
     Texture2D m_display;
     Framebuffer m_displayFramebuffer;
-    Program m_reduceFirst, m_reduce, m_colour;
+    // The "watercolour" map: the watercolour model's two state textures
+    // painted (glsl/watercolour_display.frag), no reduction.
+    void paint(const GpuSimulator& simulator);
+
+    Program m_reduceFirst, m_reduce, m_colour, m_watercolour;
     std::vector<Texture2D> m_levels; // each a quarter of the one before per side, to 1 x 1
     std::vector<Framebuffer> m_levelFramebuffers;
 };

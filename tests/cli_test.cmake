@@ -664,3 +664,16 @@ string(FIND "${last_stderr}" "phases it/s (tiles): A1 " at)
 if(at EQUAL -1)
   message(SEND_ERROR "render --perturb: no phases in: ${last_stderr}")
 endif()
+
+# Watercolour (issue 13): each preset renders with its strokes at a small size
+# (the strokes' steps are the preset's, so --steps is not cut); bad strokes
+# and the watercolour map on another model are refused with exit 2.
+foreach(p watercolour_wet_in_wet watercolour_dry_brush watercolour_painting)
+  run(0 "" render --preset ${p} --size 32 --no-settle --backend cpu --out ${p}.png)
+endforeach()
+file(WRITE "${WORK}/wc_bad.json" "{\"model\": \"watercolour\", \"size\": 16, \"steps\": 5, \"strokes\": [{\"points\": [[0.5, 0.5]], \"radius\": 0, \"water\": 1}]}")
+run(2 "strokes[0].radius" render --session wc_bad.json --out wc_bad.png)
+file(WRITE "${WORK}/wc_bad.json" "{\"model\": \"watercolour\", \"size\": 16, \"steps\": 5, \"strokes\": [{\"points\": [[0.5, 0.5]], \"radius\": 0.1, \"pigment\": \"p9\"}]}")
+run(2 "accepted: p1, p2" render --session wc_bad.json --out wc_bad.png)
+file(WRITE "${WORK}/wc_bad.json" "{\"model\": \"gray_scott\", \"size\": 16, \"steps\": 5, \"colormap\": {\"name\": \"watercolour\"}}")
+run(2 "colormap.name" render --session wc_bad.json --out wc_bad.png)

@@ -49,5 +49,5 @@ TEST(EnumNames, JoinNamesListsInOrder) {
     EXPECT_EQ(joinNames(std::vector<std::string>{}), "");
     EXPECT_EQ(joinNames(std::vector<std::string>{"a"}), "a");
     EXPECT_EQ(joinNames(colormapNames()),
-              "grey, two-colour, viridis, magma, inferno, coolwarm, custom");
+              "grey, two-colour, viridis, magma, inferno, coolwarm, custom, watercolour");
 }

@@ -13,6 +13,7 @@
 #include "core/numerics/propagator.hpp"
 #include "core/numerics/tensor_sequence.hpp"
 #include "core/output/colormap.hpp"
+#include "core/output/watercolour_paint.hpp"
 #include "core/sim/stability_check.hpp"
 #include "ui/designer_app.hpp"
 #include "ui/layout_window.hpp"
@@ -429,7 +430,9 @@ void Designer::drawDisplaySection() {
     // The colour map changes the picture, not the run: no restart.
     if (ImGui::BeginCombo("colours", base.colormap.name.c_str())) {
         for (const std::string& name : colormapNames())
-            if (name != "custom" && ImGui::Selectable(name.c_str(), name == base.colormap.name))
+            // The watercolour map paints the watercolour model's pigments only.
+            if (name != "custom" && (name != "watercolour" || paintsAsWatercolour(model)) &&
+                ImGui::Selectable(name.c_str(), name == base.colormap.name))
                 guarded("colour map", [&] {
                     ColorMapSpec spec = base.colormap;
                     spec.name = name;

@@ -12,6 +12,7 @@
 
 #include "cli/bench_domains.hpp"
 #include "cli/bench_memory.hpp"
+#include "cli/bench_models.hpp"
 #include "cli/bench_resolution.hpp"
 #include "cli/bench_surface.hpp"
 #include "cli/bench_timing.hpp"
@@ -363,6 +364,8 @@ void bench(const BenchFlags& f) {
     if (!f.noThroughput) {
         report["results"] = throughputRows(base, f, gpuRows);
         report["operators"] = operatorRows(base, f, gpuRows);
+        report["models"] =
+            benchModels(parseSizes("--sizes", f.sizes), gpuRows, !f.noCpu, f.seconds);
     }
     if (!f.noDomains)
         report["domains"] = benchDomains(gpuRows, !f.noCpu, f.seconds);

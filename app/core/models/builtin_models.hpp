@@ -6,6 +6,7 @@
 #include "core/models/meinhardt_stripes.hpp"
 #include "core/models/turing_mcgraw.hpp"
 #include "core/models/turing_turk.hpp"
+#include "core/models/watercolour.hpp"
 #include "core/models/witkin_kass.hpp"
 #include "core/models/witkin_kass_multi.hpp"
 
@@ -17,9 +18,10 @@ template <class... Models> struct ModelList {};
 // new model is added. The registry (allModels, findModel) makes one instance
 // of each, and the CPU backend instantiates its fused kernels over each one's
 // Cell (cpu_kernels.cpp), both from this list.
-using BuiltinModels = ModelList<GrayScottModel, TuringTurkModel, TuringMcGrawModel, WitkinKassModel,
-                                WitkinKassMd2, WitkinKassMd3, WitkinKassMd5, WitkinKassDa2,
-                                WitkinKassDa3, WitkinKassDa5, MeinhardtStripesModel>;
+using BuiltinModels =
+    ModelList<GrayScottModel, TuringTurkModel, TuringMcGrawModel, WitkinKassModel, WitkinKassMd2,
+              WitkinKassMd3, WitkinKassMd5, WitkinKassDa2, WitkinKassDa3, WitkinKassDa5,
+              MeinhardtStripesModel, WatercolourModel>;
 
 // Calls visit(model) for the built-in model of the exact type `model` has and
 // returns true; false (and no call) for any other model. visit receives the

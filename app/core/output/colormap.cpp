@@ -11,6 +11,8 @@
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/models/watercolour.hpp"
+#include "core/output/watercolour_paint.hpp"
 #include "core/session/gradient.hpp"
 
 namespace morphogen {
@@ -27,18 +29,18 @@ Rgb hex(unsigned v) {
             float(v & 0xff) / 255.0f};
 }
 
-enum class Palette { Grey, TwoColour, Viridis, Magma, Inferno, Coolwarm, Custom };
+enum class Palette { Grey, TwoColour, Viridis, Magma, Inferno, Coolwarm, Custom, Watercolour };
 
 const EnumName<Palette> kPalettes[] = {
-    {Palette::Grey, "grey"},    {Palette::TwoColour, "two-colour"}, {Palette::Viridis, "viridis"},
-    {Palette::Magma, "magma"},  {Palette::Inferno, "inferno"},      {Palette::Coolwarm, "coolwarm"},
-    {Palette::Custom, "custom"}};
+    {Palette::Grey, "grey"},       {Palette::TwoColour, "two-colour"},
+    {Palette::Viridis, "viridis"}, {Palette::Magma, "magma"},
+    {Palette::Inferno, "inferno"}, {Palette::Coolwarm, "coolwarm"},
+    {Palette::Custom, "custom"},   {Palette::Watercolour, "watercolour"}};
 
-const EnumAlias<Palette> kPaletteAliases[] = {{"gray", Palette::Grey},
-                                              {"two-color", Palette::TwoColour},
-                                              {"twocolour", Palette::TwoColour},
-                                              {"twocolor", Palette::TwoColour},
-                                              {"cool-warm", Palette::Coolwarm}};
+const EnumAlias<Palette> kPaletteAliases[] = {
+    {"gray", Palette::Grey},           {"two-color", Palette::TwoColour},
+    {"twocolour", Palette::TwoColour}, {"twocolor", Palette::TwoColour},
+    {"cool-warm", Palette::Coolwarm},  {"watercolor", Palette::Watercolour}};
 
 // Perceptual palettes as evenly spaced anchors (matplotlib's viridis, magma,
 // inferno; a cool-warm diverging map), interpolated piecewise linearly.
@@ -117,7 +119,21 @@ std::vector<Rgb> colormapAnchors(const ColorMapSpec& spec) {
         checkGradientStops(spec.colours.size(), "colour map 'custom'");
         return spec.colours;
     }
+    if (palette == Palette::Watercolour) {
+        // Where only a palette fits (one chemical through anchors): paper to
+        // the first pigment's colour at density 1, as paintWatercolourRow shows it.
+        const WatercolourLook look;
+        Rgb pigment;
+        for (int c = 0; c < 3; ++c)
+            pigment[std::size_t(c)] =
+                look.paper[std::size_t(c)] * std::exp(-look.absorbance[0][std::size_t(c)]);
+        return {look.paper, pigment};
+    }
     return anchors(palette);
+}
+
+bool isWatercolourMap(const ColorMapSpec& spec) {
+    return parsePalette(spec.name) == Palette::Watercolour;
 }
 
 int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model) {
@@ -131,9 +147,26 @@ int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model) {
     return index;
 }
 
+namespace {
+
+// The watercolour map paints the watercolour model's layout; any other state is bad input.
+bool paintsState(const ColorMapSpec& spec, const State& state) {
+    if (!isWatercolourMap(spec))
+        return false;
+    if (state.channels() != WatercolourModel::Cell::kChemicals)
+        throw InputError("colour map 'watercolour' paints the watercolour model's pigments on its "
+                         "paper; this state has " +
+                         std::to_string(state.channels()) +
+                         " chemicals, not the watercolour model's 7 (use another map)");
+    return true;
+}
+
+} // namespace
+
 ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec)
     : m_state(state), m_chemical(chemical), m_palette(colormapAnchors(spec)),
-      m_levelLow(spec.levels[0]), m_levelScale(1.0f / (spec.levels[1] - spec.levels[0])) {
+      m_levelLow(spec.levels[0]), m_levelScale(1.0f / (spec.levels[1] - spec.levels[0])),
+      m_paint(paintsState(spec, state)) {
     const float* p = state.plane(chemical);
     const std::size_t n = state.cellCount();
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
@@ -152,11 +185,15 @@ ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpe
                              float high)
     : m_state(state), m_chemical(chemical), m_palette(colormapAnchors(spec)), m_low(low),
       m_scale(1.0f / (high - low)), m_levelLow(spec.levels[0]),
-      m_levelScale(1.0f / (spec.levels[1] - spec.levels[0])) {
+      m_levelScale(1.0f / (spec.levels[1] - spec.levels[0])), m_paint(paintsState(spec, state)) {
     assert(low < high);
 }
 
 void ColourMapRows::row(int y, float* rgb) const {
+    if (m_paint) {
+        paintWatercolourRow(m_state, y, WatercolourLook(), rgb);
+        return;
+    }
     const std::size_t w = std::size_t(m_state.width());
     const float* p = m_state.plane(m_chemical) + std::size_t(y) * w;
     for (std::size_t x = 0; x < w; ++x) {

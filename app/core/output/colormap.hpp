@@ -25,6 +25,11 @@ int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model);
 // the GPU display pass both sample).
 std::vector<std::array<float, 3>> colormapAnchors(const ColorMapSpec& spec);
 
+// True for the "watercolour" map: not a palette over one chemical but the
+// watercolour model's pigments painted on its paper (watercolour_paint.hpp).
+// Throws InputError for an unknown name.
+bool isWatercolourMap(const ColorMapSpec& spec);
+
 // Most anchors a map has (the GPU display pass's uniform array).
 constexpr int kMaxColormapAnchors = 16;
 
@@ -57,6 +62,7 @@ private:
     float m_scale = 0.0f;
     float m_levelLow;
     float m_levelScale;
+    bool m_paint = false; // the watercolour map: paintWatercolourRow, not the palette
 };
 
 // Writes the rows as an 8- or 16-bit RGB PNG/TIFF (image_io's writeImageRows).

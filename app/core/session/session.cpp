@@ -17,7 +17,9 @@
 #include "core/domain/atlas.hpp"
 #include "core/domain/atlas_weights.hpp"
 #include "core/io/output_files.hpp"
+#include "core/output/watercolour_paint.hpp"
 #include "core/session/gradient.hpp"
+#include "core/session/watercolour_strokes.hpp"
 
 namespace morphogen {
 
@@ -303,6 +305,10 @@ ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const Reac
     } else if (isCustomColormapName(spec.name)) {
         reader.failField("name", "is 'custom', which needs \"colours\": [\"#rrggbb\", ...]");
     }
+    if ((spec.name == "watercolour" || spec.name == "watercolor") && !paintsAsWatercolour(shown))
+        reader.failField("name", "is 'watercolour', which paints the watercolour model's "
+                                 "pigments; model '" +
+                                     shown.name() + "' has none (use another map)");
     spec.chemical = reader.string("chemical", "");
     if (!spec.chemical.empty() && shown.chemicalIndex(spec.chemical) < 0)
         reader.failField("chemical",
@@ -334,7 +340,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
                        "param_maps",     "tiles",       "dt",
                        "steps",          "seed",        "init",
                        "colormap",       "height",      "length",
-                       "coarse_to_fine", "surface",     "edits"});
+                       "coarse_to_fine", "surface",     "edits",
+                       "strokes"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");
@@ -391,6 +398,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
         s.surface = surfaceSpecFromJson(top, *surface);
     if (const json* edits = top.find("edits"))
         s.edits = liveEditsFromJson(top, *edits, s);
+    if (const json* strokes = top.find("strokes"))
+        addWatercolourStrokes(top, *strokes, s);
     return s;
 }
 

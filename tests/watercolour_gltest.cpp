@@ -1,0 +1,92 @@
+// The watercolour model on the GLSL backend: water (on the paper + gone)
+// and each pigment (moving + deposited) are conserved, as on the CPU
+// (watercolour_test.cpp); the GPU display paints as the image writer does.
+// The GLSL/C++ agreement of the step itself is
+// gpu_cpu_agreement_gltest's (every registered model).
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/models/initial_condition.hpp"
+#include "core/models/watercolour.hpp"
+#include "core/output/colormap.hpp"
+#include "gl/display.hpp"
+#include "gl/gpu_simulator.hpp"
+#include "gl_test_support.hpp"
+
+using namespace morphogen;
+using M = WatercolourModel;
+
+namespace {
+
+double planeSum(const State& s, int chemical) {
+    double sum = 0;
+    for (std::size_t i = 0; i < s.cellCount(); ++i)
+        sum += s.plane(chemical)[i];
+    return sum;
+}
+
+} // namespace
+
+TEST(WatercolourGl, ConservesWaterAndPigment) {
+    test::glContext();
+    for (EdgeMode edges : {EdgeMode::Periodic, EdgeMode::Clamped}) {
+        SCOPED_TRACE(toString(edges));
+        Session s = sessionFromJson(nlohmann::json{{"model", "watercolour"}}, "conservation");
+        s.width = 48;
+        s.height = 40;
+        s.edges = edges;
+        s.init.inside["p2"] = 0.3f;
+        const State start =
+            makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, s.seed);
+        gl::GpuSimulator gpu(s);
+        gpu.setState(start);
+        gpu.run(150); // mid-wash, as on the CPU
+        const State end = gpu.state();
+        const double water0 = planeSum(start, M::W) + planeSum(start, M::G);
+        const double water1 = planeSum(end, M::W) + planeSum(end, M::G);
+        // As on the CPU: float rounding only (the GPU may fuse multiply-adds,
+        // which changes rounding, not totals), 1e-5 relative over 150 steps.
+        EXPECT_NEAR(water1 / water0, 1.0, 1e-5);
+        for (int k = 0; k < 2; ++k) {
+            const double p0 = planeSum(start, M::P1 + k) + planeSum(start, M::D1 + k);
+            const double p1 = planeSum(end, M::P1 + k) + planeSum(end, M::D1 + k);
+            EXPECT_NEAR(p1 / p0, 1.0, 1e-5) << "pigment " << k + 1;
+        }
+        EXPECT_GT(planeSum(end, M::G), 0.3 * water0);
+        std::printf("gpu %s: water %.9f -> %.9f\n", toString(edges).c_str(), water0, water1);
+    }
+}
+
+// The designer's GPU display of the "watercolour" map against the CPU path
+// (what render writes): the same paint within the driver's float-to-unorm8
+// rounding (1 of 255 per channel).
+TEST(WatercolourGl, GpuDisplayPaintsAsTheImageWriter) {
+    test::glContext();
+    Session s = sessionFromJson(nlohmann::json{{"model", "watercolour"}}, "display");
+    s.width = 40;
+    s.height = 32;
+    s.init.inside["p2"] = 0.4f;
+    s.colormap.name = "watercolour";
+    gl::GpuSimulator gpu(s);
+    gpu.setState(makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, s.seed));
+    gpu.run(150); // part dry, part wet: deposits and suspended pigment both show
+    gl::Display onGpu(s.width, s.height), onCpu(s.width, s.height);
+    onGpu.render(gpu, 0, s.colormap);
+    onCpu.upload(gpu.state(), 0, s.colormap);
+    const std::vector<std::uint8_t> a = onGpu.downloadRgba8(), b = onCpu.downloadRgba8();
+    ASSERT_EQ(a.size(), b.size());
+    int worst = 0, coloured = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        worst = std::max(worst, std::abs(int(a[i]) - int(b[i])));
+        coloured += i % 4 == 0 && b[i] < 200; // red absorbed: blue pigment shows
+    }
+    std::printf("watercolour display: gpu-cpu worst %d of 255, %d pigmented texels\n", worst,
+                coloured);
+    EXPECT_LE(worst, 1);
+    EXPECT_GT(coloured, 20);
+}
