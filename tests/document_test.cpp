@@ -223,3 +223,46 @@ TEST(Document, HistoryFilesThatAreDamagedAreRefusedByName) {
         EXPECT_NE(std::string(e.what()).find("bad.state"), std::string::npos) << e.what();
     }
 }
+
+TEST(Document, AWatercolourBrushLaysWaterAndPigmentAlongOneDrag) {
+    Document doc(cpu());
+    Session s = loadPreset("watercolour_wet_in_wet");
+    s.width = s.height = 48;
+    s.edits.clear();
+    doc.open(s);
+    doc.advance(5);
+    StrokeSpec water;
+    water.mode = BrushMode::Add;
+    water.chemical = "w";
+    water.value = 1.5f;
+    water.radius = 0.1;
+    StrokeSpec pigment = water;
+    pigment.chemical = "p2";
+    pigment.value = 0.4f;
+    const State before = doc.run().state();
+    doc.beginStroke(water, pigment);
+    doc.extendStroke({{0.3, 0.5}});
+    doc.extendStroke({{0.4, 0.5}});
+    doc.extendStroke({{0.5, 0.5}});
+    doc.endStroke();
+    const State after = doc.run().state();
+    // Each chemical rose by at most its own amount (one opacity stroke each),
+    // and by the full amount under the path.
+    const ReactionModel& m = doc.live().reactionModel();
+    const int w = m.chemicalIndex("w"), p2 = m.chemicalIndex("p2");
+    float riseW = 0, riseP = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 48; ++x) {
+            riseW = std::max(riseW, after.at(w, x, y) - before.at(w, x, y));
+            riseP = std::max(riseP, after.at(p2, x, y) - before.at(p2, x, y));
+        }
+    EXPECT_NEAR(riseW, 1.5f, 1e-4f);
+    EXPECT_NEAR(riseP, 0.4f, 1e-4f);
+    EXPECT_EQ(doc.run().edits().size(), 6u); // three pieces, two edits each
+    // Saved, the session replays it.
+    doc.advance(5);
+    const std::string path = (test::scratchDir("document_watercolour") / "wc.json").string();
+    doc.save(path);
+    const RunResult replay = runSession(loadSessionFile(path), cpu(), {});
+    EXPECT_EQ(difference(replay.state, doc.run().state()), 0.0f);
+}

@@ -40,6 +40,11 @@ struct BrushSettings {
     // brush radius, stretched by `stretch` (below 1 compresses).
     bool deform = false;
     float stretch = 1.5f;
+    // A model with water "w" and pigments (watercolour): a stroke lays water
+    // and a pigment together (the session's "strokes" sugar, live).
+    bool watercolour = true;
+    float water = 1.0f;
+    std::string pigment = "p1";
 };
 
 // A long job on a worker thread (an export at a large size): progress for
@@ -154,6 +159,9 @@ private:
                          const Atlas& atlas) const;
     // The brush settings as a stroke (chemical and parameter names resolved).
     StrokeSpec strokeFromBrush() const;
+    // The watercolour brush's pigment, laid with the water of strokeFromBrush.
+    std::optional<StrokeSpec> companionFromBrush() const;
+    bool watercolourBrush() const;
     // Opens a session that grows on a mesh: its tiles are built on a worker
     // thread (a progress bar; cancel abandons it), then it opens.
     void openSurfaceSession(Session session, const std::string& path, long long replayTo);

@@ -61,9 +61,10 @@ void Designer::drawCanvas(float x, float y, float w, float h) {
     if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !m_scrub &&
         !m_surface) {
         const StrokeSpec stroke = strokeFromBrush();
+        const std::optional<StrokeSpec> companion = companionFromBrush();
         ++m_brush.seed;
         guarded("brush", [&] {
-            m_doc.beginStroke(stroke);
+            m_doc.beginStroke(stroke, companion);
             m_doc.extendStroke({fraction});
         });
     } else if (m_doc.stroking() && !m_surface && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
@@ -186,7 +187,26 @@ StrokeSpec Designer::strokeFromBrush() const {
     stroke.seed = m_brush.seed;
     stroke.radius = m_brush.radius;
     stroke.falloff = m_brush.falloff;
+    if (watercolourBrush()) {
+        stroke.chemical = "w";
+        stroke.value = m_brush.water;
+    }
     return stroke;
+}
+
+bool Designer::watercolourBrush() const {
+    const ReactionModel& model = m_doc.live().reactionModel();
+    return m_brush.watercolour && m_brush.mode == BrushMode::Add && model.chemicalIndex("w") >= 0 &&
+           model.chemicalIndex(m_brush.pigment) >= 0;
+}
+
+std::optional<StrokeSpec> Designer::companionFromBrush() const {
+    if (!watercolourBrush() || !(m_brush.value > 0))
+        return std::nullopt;
+    StrokeSpec pigment = strokeFromBrush();
+    pigment.chemical = m_brush.pigment;
+    pigment.value = m_brush.value;
+    return pigment;
 }
 
 void Designer::drawSidePanel(float x, float y, float w, float h) {

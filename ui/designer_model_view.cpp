@@ -70,12 +70,18 @@ void Designer::drawModelView(float x, float y, float w, float h) {
     } else if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && hit &&
                !m_scrub) {
         StrokeSpec stroke = strokeFromBrush();
+        std::optional<StrokeSpec> companion = companionFromBrush();
         ++m_brush.seed;
         stroke.surface = true;
         stroke.localized = m_brush.localized;
         stroke.radius = worldRadius;
+        if (companion) {
+            companion->surface = true;
+            companion->localized = stroke.localized;
+            companion->radius = worldRadius;
+        }
         guarded("brush", [&] {
-            m_doc.beginStroke(stroke);
+            m_doc.beginStroke(stroke, companion);
             m_doc.extendSurfaceStroke({{hit->x(), hit->y(), hit->z()}});
         });
         m_modelStale = true;

@@ -2,6 +2,7 @@
 // with their ranges, the stability report, the brush and the display.
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include <imgui.h>
@@ -359,7 +360,22 @@ void Designer::drawBrushSection() {
     int mode = int(m_brush.mode);
     if (ImGui::Combo("mode", &mode, modes, IM_ARRAYSIZE(modes)))
         m_brush.mode = BrushMode(mode);
-    if (writesChemical(m_brush.mode)) {
+    const bool paintsWater = model.chemicalIndex("w") >= 0 && m_brush.mode == BrushMode::Add;
+    if (paintsWater)
+        ImGui::Checkbox("watercolour: water + pigment", &m_brush.watercolour);
+    if (watercolourBrush() || (paintsWater && m_brush.watercolour)) {
+        ImGui::SliderFloat("water", &m_brush.water, 0.0f, 4.0f, "%.2f");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("More water bleeds wider and stays wet longer (Lo Fig. 9).");
+        if (ImGui::BeginCombo("pigment", m_brush.pigment.c_str())) {
+            for (const ChemicalSpec& c : model.chemicals())
+                if (c.name.size() == 2 && c.name[0] == 'p' && std::isdigit(c.name[1]) &&
+                    ImGui::Selectable(c.name.c_str(), c.name == m_brush.pigment))
+                    m_brush.pigment = c.name;
+            ImGui::EndCombo();
+        }
+        ImGui::SliderFloat("amount", &m_brush.value, 0.0f, 2.0f, "%.3f");
+    } else if (writesChemical(m_brush.mode)) {
         const int shown = m_brush.chemical >= 0 && m_brush.chemical < int(model.chemicals().size())
                               ? m_brush.chemical
                               : model.displayChemical();

@@ -153,9 +153,9 @@ void Document::endChange() {
           [apply, after, afterDt] { apply(after, afterDt); }});
 }
 
-void Document::beginStroke(const StrokeSpec& brush) {
+void Document::beginStroke(const StrokeSpec& brush, const std::optional<StrokeSpec>& companion) {
     assert(m_run && !m_stroke);
-    m_stroke = OpenStroke{brush, m_run->checkpoint(), {}, std::nullopt};
+    m_stroke = OpenStroke{brush, companion, m_run->checkpoint(), {}, std::nullopt, std::nullopt};
 }
 
 void Document::extendStroke(const std::vector<std::array<double, 2>>& points) {
@@ -189,10 +189,22 @@ void Document::applyPiece(StrokeSpec piece) {
     // Randomise: each piece draws its own noise.
     piece.seed = m_stroke->brush.seed + m_stroke->pieces.size();
     piece.continues = !m_stroke->pieces.empty();
-    LiveEdit e;
-    e.stroke = piece;
-    m_run->applyEdit(std::move(e));
-    m_stroke->pieces.push_back(std::move(piece));
+    std::vector<StrokeSpec> edits = {piece};
+    if (m_stroke->companion) {
+        StrokeSpec with = piece;
+        with.mode = m_stroke->companion->mode;
+        with.chemical = m_stroke->companion->chemical;
+        with.param = m_stroke->companion->param;
+        with.value = m_stroke->companion->value;
+        with.continues = true; // the first piece's own coverage starts here
+        edits.push_back(std::move(with));
+    }
+    for (StrokeSpec& e : edits) {
+        LiveEdit edit;
+        edit.stroke = e;
+        m_run->applyEdit(std::move(edit));
+        m_stroke->pieces.push_back(std::move(e));
+    }
     changed();
 }
 

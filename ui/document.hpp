@@ -72,8 +72,11 @@ public:
 
     // A brush stroke: begin, extend by the points the cursor crossed since
     // the last call (each extension is one brush write on the cells it
-    // covers), end. One undo step for the stroke.
-    void beginStroke(const StrokeSpec& brush);
+    // covers), end. One undo step for the stroke. A companion stroke (a
+    // watercolour brush's pigment, laid with its water) follows the same
+    // path, piece by piece, as its own edit.
+    void beginStroke(const StrokeSpec& brush,
+                     const std::optional<StrokeSpec>& companion = std::nullopt);
     void extendStroke(const std::vector<std::array<double, 2>>& points);
     // The same on a session's mesh: points on the surface, for a stroke begun
     // with a surface brush (each kind of stroke takes only its own points).
@@ -151,6 +154,7 @@ private:
     std::optional<OpenChange> m_change;
     struct OpenStroke {
         StrokeSpec brush;
+        std::optional<StrokeSpec> companion; // laid along the same path (watercolour pigment)
         RunCheckpoint before;
         std::vector<StrokeSpec> pieces; // as applied: what redo applies again
         std::optional<std::array<double, 2>> last;

@@ -28,7 +28,7 @@ const std::map<std::string, std::pair<int, int>> kVerbs = {
     {"frames", {1, 1}},
     {"until-step", {1, 1}},
     {"param", {2, 2}},
-    {"brush", {1, 11}},
+    {"brush", {1, 17}},
     {"drag", {4, 5}},
     {"hover", {2, 2}},
     {"drag-model", {4, 5}},
@@ -211,10 +211,16 @@ bool ScriptPlayer::start(Designer& d, const ScriptCommand& c) {
                     b.falloff = float(number(c, a[i + 1]));
                 else if (key == "localized")
                     b.localized = number(c, a[i + 1]) != 0;
+                else if (key == "watercolour")
+                    b.watercolour = number(c, a[i + 1]) != 0;
+                else if (key == "water")
+                    b.water = float(number(c, a[i + 1]));
+                else if (key == "pigment")
+                    b.pigment = a[i + 1];
                 else
                     throw InputError("brush setting '" + key +
                                      "' (accepted: chemical, param, value, radius, falloff, "
-                                     "localized)");
+                                     "localized, watercolour, water, pigment)");
             }
         } else if (c.verb == "deform") {
             // The brush panel's deform tool: on with a stretch factor, or off.

@@ -303,7 +303,8 @@ Brush SessionRun::strokeWrite(const StrokeSpec& stroke) {
     if (writesChemical(stroke.mode)) {
         if (!stroke.continues)
             m_strokeCoverage.clear();
-        brush.region = uncoveredPart(brush.region, m_strokeCoverage, part.domain());
+        brush.region =
+            uncoveredPart(brush.region, m_strokeCoverage[stroke.chemical], part.domain());
     }
     return brush;
 }

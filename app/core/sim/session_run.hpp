@@ -43,7 +43,7 @@ struct RunCheckpoint {
     std::vector<LiveEdit> applied; // the edits applied until then
     std::size_t nextEdit = 0;      // the session's own edits still to come
     const ReactionModel* stateModel = nullptr;
-    StrokeCoverage strokeCoverage;
+    StrokeCoverages strokeCoverage;
     std::optional<LocalRegrowth> regrowth;
 };
 
@@ -207,7 +207,7 @@ private:
     Segment m_entry;            // the current segment as entered (restore starts from it)
     std::size_t m_nextEdit = 0; // into m_session.edits
     std::vector<LiveEdit> m_applied;
-    StrokeCoverage m_strokeCoverage; // the last stroke's, for the pieces that continue it
+    StrokeCoverages m_strokeCoverage; // the last stroke's, for the pieces that continue it
     std::optional<LocalRegrowth> m_regrowth;
     std::shared_ptr<const TileNeighbourhoods> m_neighbourhoods; // of m_neighbourhoodsOf
     const Atlas* m_neighbourhoodsOf = nullptr;

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -33,6 +34,9 @@ Brush strokeBrush(const StrokeSpec& stroke, const ReactionModel& model, const Do
 // What a stroke has covered so far, per cell: the largest weight any of its
 // pieces gave the cell (chemical modes).
 using StrokeCoverage = std::unordered_map<std::uint32_t, float>;
+// A stroke's coverage per chemical it writes: a watercolour brush lays water
+// and pigment along one drag, piece by piece, each up to its own amount.
+using StrokeCoverages = std::unordered_map<std::string, StrokeCoverage>;
 
 // The part of `piece` (one piece of a stroke) that the stroke has not
 // covered yet: each cell's weight becomes the rise of its coverage, and
