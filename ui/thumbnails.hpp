@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/session/session.hpp"
+#include "core/surface/textured_surface.hpp"
 #include "gl/objects.hpp"
 
 namespace morphogen::ui {
@@ -16,11 +17,15 @@ namespace morphogen::ui {
 // The presets browser's thumbnails, rendered by the engine: each preset run
 // at kSize x kSize on the CPU backend (the same pattern at a small size: the
 // sessions are resolution independent) on a worker thread with one OpenMP
-// thread, so the window and the live run keep going. The textures are made
-// on the main thread as the pictures arrive.
+// thread, so the window and the live run keep going. A preset on a model
+// runs on the model's tiles at a small budget (kSurfaceTiles: the same
+// pattern, coarser), and its picture is the textured model rendered on the
+// main thread, which holds the GL context. The textures are made on the
+// main thread as the pictures arrive.
 class Thumbnails {
 public:
     static constexpr int kSize = 64;
+    static constexpr int kSurfaceTiles = 150;
 
     Thumbnails() = default;
     ~Thumbnails(); // stops the worker after the preset it is on
@@ -29,7 +34,7 @@ public:
 
     void start(std::vector<Session> presets);
     // The GL texture of a preset's thumbnail, 0 until it is rendered (or
-    // when it could not be: a surface preset, a refused session). Main thread.
+    // when it could not be: a batched sweep, a refused session). Main thread.
     unsigned texture(const std::string& name);
     int rendered() const { return m_rendered.load(); }
     int total() const { return m_total; }
@@ -43,6 +48,7 @@ private:
     int m_total = 0;
     std::mutex m_mutex;
     std::map<std::string, std::vector<float>> m_pending; // RGBA, rows top first
+    std::map<std::string, TexturedMesh> m_pendingModels; // to render on the main thread
     std::map<std::string, gl::Texture2D> m_textures;
 };
 
