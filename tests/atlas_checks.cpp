@@ -106,4 +106,15 @@ double areaWeightedSum(const State& s, const Atlas& atlas, const AtlasWeights& w
     return sum;
 }
 
+bool tileEqual(const State& a, const State& b, const Atlas& atlas, int tile) {
+    for (int c = 0; c < a.channels(); ++c)
+        for (int v = 0; v < atlas.tileSize(); ++v)
+            for (int u = 0; u < atlas.tileSize(); ++u) {
+                const std::uint32_t i = atlas.tileCell(tile, u, v);
+                if (a.plane(c)[i] != b.plane(c)[i])
+                    return false;
+            }
+    return true;
+}
+
 } // namespace morphogen::test

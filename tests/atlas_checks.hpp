@@ -25,6 +25,10 @@ State randomUsedState(const Atlas& atlas, unsigned seed);
 // Sum of chemical c over the atlas's used texels, in double.
 double usedSum(const State& s, const Atlas& atlas, int c);
 
+// Whether every value of every chemical of tile `tile` is the same in a and b
+// (bit for bit: what localized steps promise the tiles they leave alone).
+bool tileEqual(const State& a, const State& b, const Atlas& atlas, int tile);
+
 // The three texels at corner 0 of tile `tile` (its corner texel and the two
 // corner texels one step across its -x and -y edges).
 std::vector<std::uint32_t> cornerTexels(const Atlas& atlas, int tile);

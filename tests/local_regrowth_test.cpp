@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "atlas_checks.hpp"
 #include "core/base/errors.hpp"
 #include "core/domain/atlas.hpp"
 #include "core/domain/tile_sets.hpp"
@@ -54,17 +55,6 @@ LiveEdit localizedDab(float value = 3.0f) {
     e.stroke->falloff = 0.5;
     e.stroke->localized = true;
     return e;
-}
-
-bool tileEqual(const State& a, const State& b, const Atlas& atlas, int tile) {
-    for (int c = 0; c < a.channels(); ++c)
-        for (int v = 0; v < atlas.tileSize(); ++v)
-            for (int u = 0; u < atlas.tileSize(); ++u) {
-                const std::uint32_t i = atlas.tileCell(tile, u, v);
-                if (a.plane(c)[i] != b.plane(c)[i])
-                    return false;
-            }
-    return true;
 }
 
 } // namespace
@@ -158,7 +148,7 @@ TEST(LocalRegrowth, SessionRunStepsOnlyTheActiveTilesAndReplaysExactly) {
     int outsideChanged = 0, insideChanged = 0;
     for (int t = 0; t < atlas.tileCount(); ++t) {
         const bool in = std::binary_search(active.begin(), active.end(), t);
-        const bool same = tileEqual(atStroke, later, atlas, t);
+        const bool same = test::tileEqual(atStroke, later, atlas, t);
         outsideChanged += !in && !same;
         insideChanged += in && !same;
     }
@@ -204,8 +194,8 @@ TEST(LocalRegrowth, SessionRunStepsOnlyTheActiveTilesAndReplaysExactly) {
     int farChanged = 0;
     const State g1 = global.state();
     for (int t = 0; t < atlas.tileCount(); ++t)
-        farChanged +=
-            !std::binary_search(active.begin(), active.end(), t) && !tileEqual(g0, g1, atlas, t);
+        farChanged += !std::binary_search(active.begin(), active.end(), t) &&
+                      !test::tileEqual(g0, g1, atlas, t);
     EXPECT_GT(farChanged, 0); // the pattern is still growing there
 }
 

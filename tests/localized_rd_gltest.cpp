@@ -18,17 +18,6 @@ using namespace morphogen;
 
 namespace {
 
-bool tileEqual(const State& a, const State& b, const Atlas& atlas, int tile) {
-    for (int c = 0; c < a.channels(); ++c)
-        for (int v = 0; v < atlas.tileSize(); ++v)
-            for (int u = 0; u < atlas.tileSize(); ++u) {
-                const std::uint32_t i = atlas.tileCell(tile, u, v);
-                if (a.plane(c)[i] != b.plane(c)[i])
-                    return false;
-            }
-    return true;
-}
-
 // 5 global steps, then `steps` with tiles 5, 6 and 9 active (5 and 6 one
 // rectangle), then 3 with tile 5 only: the state before the local steps,
 // after them, and at the end.
@@ -62,12 +51,12 @@ TEST(LocalizedGpu, InactiveTilesStayBitIdenticalAndTheCpuAgrees) {
         const std::vector<int> active = {5, 6, 9};
         for (int t = 0; t < atlas->tileCount(); ++t) {
             const bool isActive = std::count(active.begin(), active.end(), t) > 0;
-            EXPECT_EQ(tileEqual(before, gpu, *atlas, t), !isActive) << "tile " << t;
+            EXPECT_EQ(test::tileEqual(before, gpu, *atlas, t), !isActive) << "tile " << t;
         }
         // Tiles 6 and 9 left the set with the values they had reached.
-        EXPECT_TRUE(tileEqual(gpu, shrunk, *atlas, 6));
-        EXPECT_TRUE(tileEqual(gpu, shrunk, *atlas, 9));
-        EXPECT_FALSE(tileEqual(gpu, shrunk, *atlas, 5));
+        EXPECT_TRUE(test::tileEqual(gpu, shrunk, *atlas, 6));
+        EXPECT_TRUE(test::tileEqual(gpu, shrunk, *atlas, 9));
+        EXPECT_FALSE(test::tileEqual(gpu, shrunk, *atlas, 5));
         const std::array<State, 3> cpu = localRun<CpuSimulator>(s, start, 31);
         EXPECT_LT(test::maxAbsDifference(cpu[1], gpu), 1e-5f * test::maxAbsValue(cpu[1]));
         EXPECT_LT(test::maxAbsDifference(cpu[2], shrunk), 1e-5f * test::maxAbsValue(cpu[2]));

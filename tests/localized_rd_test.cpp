@@ -27,17 +27,6 @@ std::vector<int> allTiles(int count) {
     return t;
 }
 
-bool tileEqual(const State& a, const State& b, const Atlas& atlas, int tile) {
-    for (int c = 0; c < a.channels(); ++c)
-        for (int v = 0; v < atlas.tileSize(); ++v)
-            for (int u = 0; u < atlas.tileSize(); ++u) {
-                const std::uint32_t i = atlas.tileCell(tile, u, v);
-                if (a.plane(c)[i] != b.plane(c)[i])
-                    return false;
-            }
-    return true;
-}
-
 } // namespace
 
 TEST(TileNeighbourhoods, CubeFacesShareCornersWithAllButTheOppositeFace) {
@@ -145,21 +134,21 @@ TEST(LocalizedCpu, InactiveTilesStayBitIdenticalAndActiveOnesEvolve) {
         const State after = sim.state();
         for (int t = 0; t < atlas->tileCount(); ++t) {
             const bool isActive = std::count(active.begin(), active.end(), t) > 0;
-            EXPECT_EQ(tileEqual(before, after, *atlas, t), !isActive) << "tile " << t;
+            EXPECT_EQ(test::tileEqual(before, after, *atlas, t), !isActive) << "tile " << t;
         }
         // A tile leaving the set keeps the value it reached, whatever the
         // buffers held before (3 steps: the swap parity changes).
         sim.setActiveTiles({5});
         sim.run(3);
         const State shrunk = sim.state();
-        EXPECT_TRUE(tileEqual(after, shrunk, *atlas, 6));
-        EXPECT_FALSE(tileEqual(after, shrunk, *atlas, 5));
+        EXPECT_TRUE(test::tileEqual(after, shrunk, *atlas, 6));
+        EXPECT_FALSE(test::tileEqual(after, shrunk, *atlas, 5));
         // Back to global: everything steps again.
         sim.setActiveTiles({});
         sim.run(2);
         const State global = sim.state();
         for (int t = 0; t < atlas->tileCount(); ++t)
-            EXPECT_FALSE(tileEqual(shrunk, global, *atlas, t)) << "tile " << t;
+            EXPECT_FALSE(test::tileEqual(shrunk, global, *atlas, t)) << "tile " << t;
     }
 }
 
