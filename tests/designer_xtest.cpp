@@ -5,6 +5,7 @@
 // window, and quits; then `morphogen render` renders the saved session to
 // the very same image file.
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -188,6 +189,16 @@ TEST(Designer, CascadeRecordingAndModelExport) {
                                        "wait-job\n"
                                        "steps-per-frame 1\n"
                                        "frames 5\n"
+                                       // The deform tool, then a localized stroke on the model.
+                                       "deform 1.8\n"
+                                       "drag-model 0.45 0.45 0.56 0.52 4\n"
+                                       "deform off\n"
+                                       "brush add radius 0.05\n"
+                                       "drag-model 0.45 0.5 0.55 0.5 4\n"
+                                       "frames 3\n"
+                                       "save " +
+                                       d +
+                                       "blob_edits.json\n"
                                        "export-model " +
                                        d +
                                        "blob.glb\n"
@@ -213,6 +224,16 @@ TEST(Designer, CascadeRecordingAndModelExport) {
     EXPECT_EQ(glb.substr(0, 4), "glTF");
     EXPECT_EQ(int(glb[4]), 2);
     EXPECT_TRUE(loadSessionFile(d + "blob.json").surface.active());
+    // The deformation and the localized stroke are recorded as edits.
+    const Session edited = loadSessionFile(d + "blob_edits.json");
+    bool deformed = false, localized = false;
+    for (const LiveEdit& e : edited.edits) {
+        // The slider holds a float: 1.8 comes back as 1.7999999523.
+        deformed = deformed || (e.deform && std::abs(e.deform->factor - 1.8) < 1e-6);
+        localized = localized || (e.stroke && e.stroke->surface && e.stroke->localized);
+    }
+    EXPECT_TRUE(deformed);
+    EXPECT_TRUE(localized);
 }
 
 TEST(Designer, ACrashLosesAtMostTheAutosaveInterval) {
