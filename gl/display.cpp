@@ -119,11 +119,26 @@ void Display::paint(const GpuSimulator& simulator) {
 
 void Display::upload(const State& state, int chemical, const ColorMapSpec& spec) {
     assert(state.width() == m_width && state.height() == m_height);
-    const std::vector<float> rgb = applyColormap(state, chemical, spec);
-    std::vector<std::uint8_t> rgba(state.cellCount() * 4, 255);
-    for (std::size_t i = 0; i < state.cellCount(); ++i)
-        for (std::size_t k = 0; k < 3; ++k)
-            rgba[i * 4 + k] = toUnorm8(rgb[i * 3 + k]);
+    // Row by row on every core: the designer does this every frame on the
+    // CPU backend, and the frame's time is the simulation's.
+    const ColourMapRows rows(state, chemical, spec);
+    const std::size_t w = std::size_t(m_width);
+    std::vector<std::uint8_t>& rgba = m_uploadRgba;
+    rgba.resize(state.cellCount() * 4);
+#pragma omp parallel if (state.cellCount() >= 65536)
+    {
+        std::vector<float> rgb(w * 3);
+#pragma omp for schedule(static)
+        for (int y = 0; y < m_height; ++y) {
+            rows.row(y, rgb.data());
+            std::uint8_t* out = rgba.data() + std::size_t(y) * w * 4;
+            for (std::size_t x = 0; x < w; ++x) {
+                for (std::size_t k = 0; k < 3; ++k)
+                    out[x * 4 + k] = toUnorm8(rgb[x * 3 + k]);
+                out[x * 4 + 3] = 255;
+            }
+        }
+    }
     glBindTexture(GL_TEXTURE_2D, m_display.id());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE,

@@ -42,6 +42,7 @@ private:
     int m_width, m_height;
     VertexArray m_vao;
     Texture2D m_display;
+    std::vector<std::uint8_t> m_uploadRgba; // upload's, kept: a new one a frame page-faults
     Framebuffer m_displayFramebuffer;
     // The "watercolour" map: the watercolour model's two state textures
     // painted (glsl/watercolour_display.frag), no reduction.

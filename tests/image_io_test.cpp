@@ -2,6 +2,8 @@
 // they should hold; bad paths give InputError before anything is written.
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 
@@ -33,6 +35,29 @@ State ramp(int w, int h) {
 }
 
 } // namespace
+
+TEST(ImageIo, EightBitQuantisationRoundsAsLround) {
+    // toUnorm8 rounds without libm; it must give lround's byte for every
+    // input, the half-way values (k + 0.5) / 255 and their float neighbours
+    // included, so the PNG writer's bytes did not change with it.
+    auto reference = [](float v) {
+        return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    };
+    int checked = 0;
+    for (int k = 0; k < 256; ++k) {
+        const float half = (float(k) + 0.5f) / 255.0f;
+        for (float v :
+             {half, std::nextafter(half, 0.0f), std::nextafter(half, 1.0f), float(k) / 255.0f}) {
+            EXPECT_EQ(toUnorm8(v), reference(v)) << v;
+            ++checked;
+        }
+    }
+    for (float v = -0.5f; v <= 1.5f; v = std::nextafter(v, 2.0f) + 1e-7f) {
+        ASSERT_EQ(toUnorm8(v), reference(v)) << v;
+        ++checked;
+    }
+    EXPECT_GT(checked, 1000000);
+}
 
 TEST(ImageIo, FormatFollowsTheExtension) {
     EXPECT_EQ(imageFormatForPath("a/b.png"), ImageFormat::Png);

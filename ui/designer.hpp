@@ -13,7 +13,9 @@ struct DesignerOptions {
     std::string session; // a session file to open at start
     std::string script;  // a script that drives the designer (ui/script.hpp); empty: none
     std::string backend = "auto";
-    int width = 1600, height = 1000; // the window, in screen units
+    // The window, in screen units; 0: the size it had when last closed
+    // (designer.json), 1600 x 1000 the first time.
+    int width = 0, height = 0;
     // Where settings and autosaves live; empty: $XDG_CONFIG_HOME/morphogen and
     // $XDG_STATE_HOME/morphogen (or ~/.config, ~/.local/state).
     std::string configDir, stateDir;

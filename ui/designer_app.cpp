@@ -64,7 +64,9 @@ Designer::Designer(const DesignerOptions& options, const DesignerServices& servi
     : m_options(options), m_services(services),
       m_settings(Settings::load(options.configDir, options.stateDir)),
       m_doc([this](const Session& s) { return m_backend.makeSimulator(s); }) {
-    m_window = gl::createGlfwContext(options.width, options.height, "Morphogen designer", true);
+    m_window = gl::createGlfwContext(options.width > 0 ? options.width : m_settings.windowWidth,
+                                     options.height > 0 ? options.height : m_settings.windowHeight,
+                                     "Morphogen designer", true);
     m_backend = gl::makeBackend(gl::parseBackendChoice(options.backend), *m_window);
     std::fprintf(stderr, "morphogen design: %s\n", m_backend.reason.c_str());
     m_controlsWidth = m_settings.controlsWidth;
@@ -106,7 +108,7 @@ Designer::Designer(const DesignerOptions& options, const DesignerServices& servi
     m_offerRestore = options.script.empty() && fs::exists(m_settings.autosavePath());
 
     std::vector<Session> presets = allPresets();
-    m_thumbnails.start(std::move(presets));
+    m_thumbnails.start(std::move(presets), m_settings.cacheDir);
     m_lastFrame = m_lastRate = m_lastAutosave = Clock::now();
 }
 
@@ -426,7 +428,11 @@ int Designer::run(ScriptPlayer* script) {
         const auto [fw, fh] = m_window->framebufferSize();
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glViewport(0, 0, fw, fh);
-        glClearColor(0.09f, 0.09f, 0.1f, 1.0f);
+        // The panels draw no background of their own (see beginPanel): the
+        // clear gives it, as the window colour over the old clear colour.
+        const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+        glClearColor(bg.x * bg.w + 0.09f * (1 - bg.w), bg.y * bg.w + 0.09f * (1 - bg.w),
+                     bg.z * bg.w + 0.1f * (1 - bg.w), 1.0f);
         glClear(GL_COLOR_BUFFER_BIT);
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         if (!m_pendingScreenshot.empty())
@@ -455,6 +461,10 @@ int Designer::run(ScriptPlayer* script) {
     if (script == nullptr)
         m_settings.save();
     return script && script->failed() ? 1 : 0;
+}
+
+std::string Designer::backendName() {
+    return m_doc.isOpen() && !m_doc.run().finished() ? m_doc.run().simulator().backendName() : "-";
 }
 
 void Designer::frame() {
@@ -687,8 +697,7 @@ void Designer::drawStatusBar(float y, float h) {
     ImGui::Begin("##status", nullptr,
                  ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                      ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
-    const std::string backend =
-        m_doc.isOpen() && !m_doc.run().finished() ? m_doc.run().simulator().backendName() : "-";
+    const std::string backend = backendName();
     ImGui::Text("%s | step %lld | %.0f fps | %.0f steps/s | %d steps/frame%s | backend %s%s",
                 m_playing ? "running" : "paused", m_doc.isOpen() ? m_doc.steps() : 0LL, m_fps,
                 m_stepsPerSecond, m_stepsPerFrame > 0 ? m_stepsPerFrame : m_autoSteps,

@@ -127,6 +127,10 @@ public:
     std::array<float, 4> modelRect() const { return m_modelRect; } // the 3D view's
     bool hasModel() const { return m_surface != nullptr; }
     bool jobRunning() const { return m_job != nullptr; }
+    bool thumbnailsDone() const { return m_thumbnails.rendered() >= m_thumbnails.total(); }
+    double fps() const { return m_fps; }
+    double stepsPerSecond() const { return m_stepsPerSecond; }
+    std::string backendName(); // the status line's: the live run's backend, or "-"
     const CanvasView& canvasView() const { return m_view; }
     // Shows an error in the status line and on stderr; the script fails on it.
     void reportError(const std::string& message);

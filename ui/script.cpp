@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -41,6 +42,8 @@ const std::map<std::string, std::pair<int, int>> kVerbs = {
     {"record-stop", {0, 0}},
     {"render-map", {0, 0}},
     {"wait-job", {0, 0}},
+    {"wait-thumbnails", {0, 0}},
+    {"rates", {0, 0}},
     {"key", {1, 1}},
     {"save", {1, 1}},
     {"export", {1, 2}},
@@ -283,7 +286,12 @@ bool ScriptPlayer::start(Designer& d, const ScriptCommand& c) {
         else if (c.verb == "wait-job") {
             m_waitJob = true;
             return false;
-        } else if (c.verb == "save")
+        } else if (c.verb == "wait-thumbnails") {
+            m_waitThumbnails = true;
+            return false;
+        } else if (c.verb == "rates")
+            printRates(d);
+        else if (c.verb == "save")
             d.saveSession(a[0]);
         else if (c.verb == "export")
             d.exportImage(a[0], a.size() > 1 ? int(number(c, a[1])) : 8);
@@ -323,8 +331,10 @@ void ScriptPlayer::beforeFrame(Designer& d) {
         d.setPlaying(true); // an opened session pauses when its replay ends
     if (m_waitJob && !d.jobRunning())
         m_waitJob = false;
-    while (!m_waitJob && !released && !m_failed && m_wait == 0 && m_untilStep < 0 && !m_dragging &&
-           m_key < 0 && m_next < m_commands.size()) {
+    if (m_waitThumbnails && d.thumbnailsDone())
+        m_waitThumbnails = false;
+    while (!m_waitJob && !m_waitThumbnails && !released && !m_failed && m_wait == 0 &&
+           m_untilStep < 0 && !m_dragging && m_key < 0 && m_next < m_commands.size()) {
         if (!start(d, m_commands[m_next++]))
             break;
     }
@@ -362,7 +372,27 @@ void ScriptPlayer::beforeFrame(Designer& d) {
     }
 }
 
+void ScriptPlayer::printRates(Designer& d) {
+    // Averages since the last `rates` (the first one only starts the clock):
+    // the status line's figures are over half a second, too short to quote.
+    const auto now = std::chrono::steady_clock::now();
+    const long long steps = d.document().isOpen() ? d.document().steps() : 0;
+    if (m_ratesFrames > 0 && m_ratesSince != std::chrono::steady_clock::time_point{}) {
+        const double span = std::chrono::duration<double>(now - m_ratesSince).count();
+        std::printf("rates: %lld frames, %lld steps in %.2f s: %.1f fps, %.0f steps/s "
+                    "(status line: %.0f fps, %.0f steps/s, backend %s)\n",
+                    m_ratesFrames, steps - m_ratesSteps, span, double(m_ratesFrames) / span,
+                    double(steps - m_ratesSteps) / span, d.fps(), d.stepsPerSecond(),
+                    d.backendName().c_str());
+        std::fflush(stdout);
+    }
+    m_ratesSince = now;
+    m_ratesSteps = steps;
+    m_ratesFrames = 0;
+}
+
 void ScriptPlayer::afterFrame(Designer& d) {
+    ++m_ratesFrames;
     checkErrors(d);
     if (m_wait > 0)
         --m_wait;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,9 @@ class Designer;
 //   tab presets|history|map     bring a side panel to the front
 //   render-map                  the map panel's button
 //   wait-job                    let frames pass until a background job (map, export, tiles) ends
+//   wait-thumbnails             let frames pass until the presets' thumbnails are made
+//   rates                       print frames/s and steps/s averaged since the last `rates`
+//                               (the first starts the clock)
 //   restore-autosave            the crash-restore offer's button
 //   crash                       end the process at once, as a crash would (recovery tests)
 //   save FILE | export FILE [BITS] | screenshot FILE | export-model FILE.glb
@@ -64,12 +68,16 @@ private:
     void checkErrors(const Designer& designer);
     // Starts a command; false when it needs frames (m_wait or a drag).
     bool start(Designer& designer, const ScriptCommand& c);
+    void printRates(Designer& designer);
 
     std::vector<ScriptCommand> m_commands;
     std::size_t m_next = 0;
     int m_wait = 0; // frames left of a `frames` command
     long long m_untilStep = -1;
     bool m_waitJob = false;
+    bool m_waitThumbnails = false;
+    std::chrono::steady_clock::time_point m_ratesSince;
+    long long m_ratesSteps = 0, m_ratesFrames = 0;
     // A drag in progress: canvas fractions, the frame it is on, its length.
     bool m_dragging = false;
     double m_from[2] = {0, 0}, m_to[2] = {0, 0};

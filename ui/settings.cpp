@@ -30,6 +30,8 @@ Settings Settings::load(const std::string& configDir, const std::string& stateDi
     Settings s;
     s.configDir = configDir.empty() ? xdgDir("XDG_CONFIG_HOME", ".config") : configDir;
     s.stateDir = stateDir.empty() ? xdgDir("XDG_STATE_HOME", ".local/state") : stateDir;
+    s.cacheDir = stateDir.empty() ? xdgDir("XDG_CACHE_HOME", ".cache")
+                                  : (std::filesystem::path(stateDir) / "cache").string();
     std::ifstream in(s.settingsPath());
     if (!in)
         return s;
@@ -50,6 +52,7 @@ Settings Settings::load(const std::string& configDir, const std::string& stateDi
         Settings defaults;
         defaults.configDir = s.configDir;
         defaults.stateDir = s.stateDir;
+        defaults.cacheDir = s.cacheDir;
         return defaults;
     }
     return s;

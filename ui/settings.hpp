@@ -10,6 +10,7 @@ namespace morphogen::ui {
 struct Settings {
     std::string configDir; // settings, Dear ImGui's window state
     std::string stateDir;  // autosaves
+    std::string cacheDir;  // preset thumbnails (safe to delete)
     std::string lastFolder;
     std::string lastSession; // the session open at the last exit ("" for a preset)
     std::string lastPreset;
@@ -18,7 +19,9 @@ struct Settings {
 
     // configDir/stateDir empty: $XDG_CONFIG_HOME/morphogen and
     // $XDG_STATE_HOME/morphogen, or ~/.config/morphogen and
-    // ~/.local/state/morphogen.
+    // ~/.local/state/morphogen. The cache is $XDG_CACHE_HOME/morphogen (or
+    // ~/.cache/morphogen), or stateDir/cache when stateDir is given, so a
+    // test's run keeps to its own folders.
     static Settings load(const std::string& configDir, const std::string& stateDir);
     // Best effort (a warning on stderr when it cannot write).
     void save() const;

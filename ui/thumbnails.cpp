@@ -1,11 +1,17 @@
 #include "ui/thumbnails.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 
 #include <glad/gl.h>
+#include <nlohmann/json.hpp>
 #include <omp.h>
 
+#include "core/io/image_io.hpp"
+#include "core/session/session.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/runner.hpp"
 #include "core/surface/surface_colours.hpp"
@@ -15,16 +21,65 @@
 
 namespace morphogen::ui {
 
+namespace {
+
+// FNV-1a: a stable name for a preset's content (std::hash may differ
+// between builds).
+std::uint64_t fnv1a(const std::string& text) {
+    std::uint64_t h = 14695981039346656037ull;
+    for (unsigned char c : text) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+std::string cachePath(const std::string& dir, const Session& s) {
+    const std::string key =
+        sessionToJson(s).dump() + "|v" + std::to_string(Thumbnails::kCacheVersion) + "|" +
+        std::to_string(Thumbnails::kSize) + "|" + std::to_string(Thumbnails::kSurfaceTiles);
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
+    return (std::filesystem::path(dir) / "thumbnails" / (s.name + "-" + hex + ".png")).string();
+}
+
+// The cached picture as RGBA rows, or nothing when it is missing or not a
+// kSize x kSize RGBA image.
+std::optional<std::vector<float>> readCached(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        return std::nullopt;
+    try {
+        const RawImage image = readRawImage(path);
+        const State& st = image.state;
+        if (st.width() != Thumbnails::kSize || st.height() != Thumbnails::kSize ||
+            st.channels() != 4)
+            return std::nullopt;
+        std::vector<float> rgba(st.cellCount() * 4);
+        for (int c = 0; c < 4; ++c)
+            for (std::size_t i = 0; i < st.cellCount(); ++i)
+                rgba[i * 4 + std::size_t(c)] = st.plane(c)[i];
+        return rgba;
+    } catch (const std::exception&) {
+        return std::nullopt;
+    }
+}
+
+} // namespace
+
 Thumbnails::~Thumbnails() {
     m_stop = true;
     if (m_worker.joinable())
         m_worker.join();
 }
 
-void Thumbnails::start(std::vector<Session> presets) {
+void Thumbnails::start(std::vector<Session> presets, const std::string& cacheDir) {
     if (m_worker.joinable())
         return;
     m_total = int(presets.size());
+    if (!cacheDir.empty())
+        for (const Session& s : presets)
+            m_cachePaths[s.name] = cachePath(cacheDir, s);
     m_worker = std::thread([this, presets = std::move(presets)]() mutable { work(presets); });
 }
 
@@ -38,6 +93,15 @@ void Thumbnails::work(std::vector<Session> presets) {
             ++m_rendered; // no one picture of a sweep
             continue;
         }
+        const auto cached = m_cachePaths.find(s.name);
+        if (cached != m_cachePaths.end())
+            if (std::optional<std::vector<float>> rgba = readCached(cached->second)) {
+                std::lock_guard<std::mutex> lock(m_mutex);
+                m_pending[s.name] = std::move(*rgba);
+                ++m_fromCache;
+                ++m_rendered;
+                continue;
+            }
         try {
             std::optional<SurfaceSetup> setup;
             if (s.surface.active()) {
@@ -65,6 +129,7 @@ void Thumbnails::work(std::vector<Session> presets) {
             }
             std::vector<float> rgba = colouredRgba(
                 result.state, colormapChemical(s.colormap, s.outputModel()), s.colormap);
+            keep(s.name, rgba);
             std::lock_guard<std::mutex> lock(m_mutex);
             m_pending[s.name] = std::move(rgba);
         } catch (const std::exception& e) {
@@ -72,6 +137,21 @@ void Thumbnails::work(std::vector<Session> presets) {
                          s.name.c_str(), e.what());
         }
         ++m_rendered;
+    }
+}
+
+void Thumbnails::keep(const std::string& name, const std::vector<float>& rgba) const {
+    const auto it = m_cachePaths.find(name);
+    if (it == m_cachePaths.end())
+        return;
+    try {
+        std::filesystem::create_directories(std::filesystem::path(it->second).parent_path());
+        writeImageRows(it->second, kSize, kSize, 4, 8, [&](int y, float* row) {
+            std::copy_n(rgba.data() + std::size_t(y) * kSize * 4, kSize * 4, row);
+        });
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "morphogen design: thumbnail of %s not cached: %s\n", name.c_str(),
+                     e.what());
     }
 }
 
@@ -104,6 +184,7 @@ unsigned Thumbnails::texture(const std::string& name) {
         rgba.resize(image.rgba.size());
         for (std::size_t i = 0; i < rgba.size(); ++i)
             rgba[i] = image.rgba[i] / 255.0f;
+        keep(name, rgba);
     }
     gl::Texture2D texture(kSize, kSize, GL_RGBA8);
     texture.uploadRgba(rgba);

@@ -47,8 +47,10 @@ void addDesignCommand(CLI::App& app) {
                     "GL renderer is a software rasterizer)");
     cmd->add_option("--script", options->script,
                     "Drive the designer from a script (tests, demos); see README");
-    cmd->add_option("--window", options->width, "Window width in screen units");
-    cmd->add_option("--window-height", options->height, "Window height in screen units");
+    cmd->add_option("--window", options->width,
+                    "Window width in screen units (default: as it was last closed, else 1600)");
+    cmd->add_option("--window-height", options->height,
+                    "Window height in screen units (default: as last closed, else 1000)");
     cmd->add_option("--config-dir", options->configDir,
                     "Settings folder (default $XDG_CONFIG_HOME/morphogen)");
     cmd->add_option("--state-dir", options->stateDir,
@@ -58,8 +60,9 @@ void addDesignCommand(CLI::App& app) {
         ->check(CLI::Range(0.0, 86400.0));
     cmd->callback([options] {
         (void)gl::parseBackendChoice(options->backend); // bad input: exit 2 before a window
-        if (options->width < 320 || options->width > 16384 || options->height < 240 ||
-            options->height > 16384)
+        // 0 (the default): the size remembered from the last run.
+        if ((options->width != 0 && (options->width < 320 || options->width > 16384)) ||
+            (options->height != 0 && (options->height < 240 || options->height > 16384)))
             throw InputError("--window " + std::to_string(options->width) + " x " +
                              std::to_string(options->height) +
                              " is outside 320..16384 x 240..16384");

@@ -24,7 +24,11 @@ void checkWritable(const std::string& path);
 // An 8-bit image's value for v in [0, 1] (clamped; rounded to nearest): the
 // PNG writer's and the display's CPU path's quantisation.
 inline std::uint8_t toUnorm8(float v) {
-    return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    // lround's half away from zero, without its libm call (it kept the
+    // display's per-frame loop from vectorising): x + 0.5 is exact in double
+    // for any float x in [0, 255], so truncating it rounds as lround does.
+    const float x = std::clamp(v, 0.0f, 1.0f) * 255.0f;
+    return std::uint8_t(int(double(x) + 0.5));
 }
 
 // Fills row y (0 at the top) of an image: width * channels interleaved values.
