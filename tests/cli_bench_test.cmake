@@ -17,7 +17,7 @@ endif()
 
 # The other rows at their smallest: throughput at 16x16, no domains or convergence.
 execute_process(COMMAND ${MORPHOGEN} bench --sizes 16 --operator-sizes 16 --seconds 0.01
-  --no-domains --no-surface --no-convergence --no-resolution --memory-sizes 1024 --json bench.json
+  --no-domains --no-surface --no-convergence --no-resolution --no-designer --memory-sizes 1024 --json bench.json
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err WORKING_DIRECTORY "${WORK}")
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "bench with memory rows: exit ${rc}\n${err}")
@@ -71,7 +71,7 @@ endif()
 # with its phase times, and the holes atlas's throughput against a grid, each
 # with finite positive figures.
 execute_process(COMMAND ${MORPHOGEN} bench --seconds 0.01 --no-throughput --no-domains
-  --no-convergence --no-memory --no-resolution --json surface.json
+  --no-convergence --no-memory --no-resolution --no-designer --json surface.json
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err WORKING_DIRECTORY "${WORK}")
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "bench surface rows: exit ${rc}\n${err}")

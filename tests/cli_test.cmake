@@ -552,7 +552,7 @@ run(2 "--max-steps applies to a run until settled" render --session settled.json
 # bench's resolution section alone (issue: the same look at any size): a
 # preset rendered until settled at each size, with finite figures per row, the
 # time ratio and the refined-versus-direct row; bad sizes are refused first.
-run(0 "" bench --no-throughput --no-domains --no-surface --no-convergence --no-memory --resolution-sizes 32,64
+run(0 "" bench --no-throughput --no-domains --no-surface --no-convergence --no-memory --no-designer --resolution-sizes 32,64
     --resolution-presets turk_large_spots --resolution-compare-size 64 --json res.json)
 file(READ "${WORK}/res.json" res)
 string(JSON res_presets ERROR_VARIABLE res_error LENGTH "${res}" resolution presets)

@@ -236,6 +236,38 @@ TEST(Designer, CascadeRecordingAndModelExport) {
     EXPECT_TRUE(localized);
 }
 
+TEST(Designer, BenchMeasuresTheDesignerAgainstItsBaseline) {
+    // bench's designer rows end to end (small and short: the figures are
+    // the bench's business, not a timed test): the designer runs in a child
+    // process under this display at the steps per frame that 80% of the
+    // baseline needs at 30 fps, and in auto; each row has its rates.
+    const fs::path dir = work();
+    const std::string json = (dir / "designer_bench.json").string();
+    std::string err;
+    ASSERT_EQ(runMorphogen("bench --seconds 0.05 --no-throughput --no-domains --no-surface "
+                           "--no-convergence --no-memory --no-resolution --no-gpu "
+                           "--designer-size 64 --json " +
+                               json,
+                           &err),
+              0)
+        << err;
+    const nlohmann::json report = nlohmann::json::parse(readText(json));
+    ASSERT_TRUE(report.contains("designer")) << report.dump();
+    const nlohmann::json& rows = report["designer"];
+    ASSERT_EQ(rows.size(), 2u) << rows.dump();
+    EXPECT_EQ(rows[1]["steps_per_frame"], "auto");
+    for (const nlohmann::json& row : rows) {
+        ASSERT_FALSE(row.contains("error")) << row.dump();
+        EXPECT_GT(row["baseline_cpu_iterations_per_s"].get<double>(), 0) << row.dump();
+        EXPECT_GT(row["frames_per_s"].get<double>(), 0) << row.dump();
+        EXPECT_GT(row["steps_per_s"].get<double>(), 0) << row.dump();
+        EXPECT_NEAR(row["over_baseline"].get<double>(),
+                    row["steps_per_s"].get<double>() /
+                        row["baseline_cpu_iterations_per_s"].get<double>(),
+                    1e-9);
+    }
+}
+
 TEST(Designer, ACrashLosesAtMostTheAutosaveInterval) {
     // A run that crashes after its autosave leaves the session behind; the
     // next run restores it (the restore offer's button) and replays it to the

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/bench_designer.hpp"
 #include "cli/bench_domains.hpp"
 #include "cli/bench_memory.hpp"
 #include "cli/bench_models.hpp"
@@ -50,6 +51,8 @@ struct BenchFlags {
     bool noMemory = false;
     bool noResolution = false;
     bool noThroughput = false;
+    bool noDesigner = false;
+    int designerSize = 512;
     ResolutionBenchFlags resolution;
 };
 
@@ -384,6 +387,8 @@ void bench(const BenchFlags& f) {
     }
     if (!f.noResolution)
         report["resolution"] = benchResolution(f.resolution, f.context, f.gpuDevice);
+    if (!f.noDesigner && !f.noCpu)
+        report["designer"] = benchDesigner({f.preset, f.designerSize, f.seconds});
     if (!f.json.empty())
         writeJson(f.json, report);
 }
@@ -425,6 +430,12 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--memory-sizes", flags->memorySizes,
                     "sizes of the peak-memory renders, one process each (default 1024,2048,4096)");
     cmd->add_flag("--no-memory", flags->noMemory, "skip the peak-memory rows");
+    cmd->add_flag("--no-designer", flags->noDesigner,
+                  "skip the designer rows (morphogen design under the display, needs $DISPLAY: "
+                  "xvfb-run)");
+    cmd->add_option("--designer-size", flags->designerSize,
+                    "grid size of the designer rows (default 512)")
+        ->check(CLI::Range(16, 4096));
     cmd->add_flag("--no-resolution", flags->noResolution,
                   "skip the same-look-at-any-size rows (presets rendered until settled at "
                   "--resolution-sizes)");

@@ -21,5 +21,14 @@ void addMeshCommands(CLI::App& app);
 void addTileStatsCommand(CLI::App& app);
 // The interactive designer (ui/): a window.
 void addDesignCommand(CLI::App& app);
+// Before anything else in main: for `morphogen design`, restarts the process
+// once with OpenMP's spin-wait shortened (GOMP_SPINCOUNT, which libgomp reads
+// only as it loads). The designer alternates bursts of simulation with
+// drawing; after each burst libgomp's idle threads spin (300,000 turns by
+// default) on the cores the drawing (a software rasterizer,
+// the display server) needs. Measured under Xvfb on 2 cores: 6% more steps
+// per second at the same frame rate. Keeps a GOMP_SPINCOUNT or
+// OMP_WAIT_POLICY the user set; does nothing if the restart fails.
+void tuneOpenMpForTheDesigner(int argc, char** argv);
 
 } // namespace morphogen::cli

@@ -1,5 +1,8 @@
+#include <cstdlib>
 #include <memory>
 #include <string>
+
+#include <unistd.h>
 
 #include "cli/commands.hpp"
 #include "cli/render_output.hpp"
@@ -35,6 +38,18 @@ ui::DesignerServices renderWriters() {
 }
 
 } // namespace
+
+void tuneOpenMpForTheDesigner(int argc, char** argv) {
+    if (argc < 2 || std::string(argv[1]) != "design" || std::getenv("GOMP_SPINCOUNT") ||
+        std::getenv("OMP_WAIT_POLICY"))
+        return;
+    // About 3,000 spins: the waits between a step's parallel loops stay
+    // spins (they are a few microseconds), the wait for the next frame sleeps.
+    if (::setenv("GOMP_SPINCOUNT", "3000", 1) != 0)
+        return;
+    ::execv("/proc/self/exe", argv);
+    ::unsetenv("GOMP_SPINCOUNT"); // the restart failed: go on as started
+}
 
 void addDesignCommand(CLI::App& app) {
     auto options = std::make_shared<ui::DesignerOptions>();

@@ -10,6 +10,7 @@
 #include "core/base/limits.hpp"
 
 int main(int argc, char** argv) {
+    morphogen::cli::tuneOpenMpForTheDesigner(argc, argv);
     morphogen::cli::writePeakMemoryAtExit(); // for `bench`'s memory rows, when they ask
     morphogen::cli::installSignalHandlers(); // an interrupted write leaves no temporaries
     CLI::App app{"Morphogen: reaction-diffusion textures (Turing, Gray-Scott) on the GPU or CPU",

@@ -1,0 +1,151 @@
+#include "cli/bench_designer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/bench_timing.hpp"
+#include "core/models/initial_condition.hpp"
+#include "core/session/session.hpp"
+#include "core/sim/cpu_simulator.hpp"
+
+namespace morphogen::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DesignerRun {
+    bool ok = false;
+    double fps = 0, stepsPerSecond = 0;
+    std::string error;
+};
+
+std::string quoted(const std::string& s) {
+    std::string q = "'";
+    for (char c : s)
+        q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+// The designer on `session` at `stepsPerFrame` (0: auto) for `frames` frames
+// after 30 to settle; its script's last `rates` line.
+DesignerRun runDesigner(const fs::path& dir, const fs::path& session, int stepsPerFrame,
+                        int frames) {
+    const fs::path script = dir / "script.txt";
+    // The presets' thumbnails first: they render on a worker on the first
+    // start (then come from the cache, which the runs share).
+    std::ofstream(script) << "open " << session.string() << "\n"
+                          << "wait-thumbnails\n"
+                          << "until-step 2\n"
+                          << "steps-per-frame " << stepsPerFrame << "\n"
+                          << "frames 30\n"
+                          << "rates\n"
+                          << "frames " << frames << "\n"
+                          << "rates\n"
+                          << "quit\n";
+    const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+    const std::string self = fs::read_symlink("/proc/self/exe").string();
+    const std::string command = quoted(self) + " design --backend cpu --script " +
+                                quoted(script.string()) + " --config-dir " +
+                                quoted((dir / "config").string()) + " --state-dir " +
+                                quoted((dir / "state").string()) + " > " + quoted(out.string()) +
+                                " 2> " + quoted(err.string());
+    DesignerRun run;
+    const int status = std::system(command.c_str());
+    std::ifstream in(out);
+    std::string line, last;
+    while (std::getline(in, line))
+        if (line.rfind("rates:", 0) == 0)
+            last = line;
+    long long f = 0, steps = 0;
+    double span = 0;
+    if (status != 0 || last.empty() ||
+        std::sscanf(last.c_str(), "rates: %lld frames, %lld steps in %lf s", &f, &steps, &span) !=
+            3 ||
+        span <= 0) {
+        std::ifstream e(err);
+        std::string l;
+        while (std::getline(e, l))
+            if (!l.empty())
+                run.error = l;
+        if (run.error.empty())
+            run.error =
+                "the designer printed no rates (exit status " + std::to_string(status) + ")";
+        return run;
+    }
+    run.ok = true;
+    run.fps = double(f) / span;
+    run.stepsPerSecond = double(steps) / span;
+    return run;
+}
+
+} // namespace
+
+nlohmann::json benchDesigner(const DesignerBench& bench) {
+    nlohmann::json rows = nlohmann::json::array();
+    std::printf("\n%-30s %-6s %12s %10s %12s %12s\n", "designer (cpu backend)", "size",
+                "steps/frame", "frames/s", "steps/s", "of bench cpu");
+    const char* display = std::getenv("DISPLAY");
+    if (!display || !*display) {
+        std::printf("  skipped: no display ($DISPLAY); run the bench under xvfb-run\n");
+        return rows;
+    }
+    const int n = bench.size;
+    Session s = loadPreset(bench.preset);
+    resizeSession(s, n, n);
+    s.length = n; // one cell per unit: a session step is one simulator step
+    s.steps = 1;
+
+    // The baseline, as the throughput rows measure it.
+    std::fprintf(stderr, "bench: %dx%d cpu step (designer baseline)...\n", n, n);
+    CpuSimulator cpu(s);
+    cpu.setState(makeInitialState(s.init, s.reactionModel(), s.params, n, n, s.seed));
+    const int batch = std::max(1, int(2e6 / (double(n) * n)));
+    const double baseline =
+        measureStepsPerSecond([&](int k) { cpu.run(k); }, [] {}, bench.seconds, batch);
+
+    const fs::path dir =
+        fs::temp_directory_path() / ("morphogen-bench-designer-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const fs::path session = dir / "session.json";
+    saveSessionFile(s, session.string());
+    // 80% of the baseline at 30 frames/s, in whole steps per frame.
+    const int target = std::max(1, int(std::ceil(0.8 * baseline / 30.0)));
+    const int frames = std::max(150, int(bench.seconds * 30));
+    for (int stepsPerFrame : {target, 0}) {
+        std::fprintf(stderr, "bench: designer at %s steps per frame...\n",
+                     stepsPerFrame > 0 ? std::to_string(stepsPerFrame).c_str() : "auto");
+        const DesignerRun run = runDesigner(dir, session, stepsPerFrame, frames);
+        const std::string label = stepsPerFrame > 0 ? std::to_string(stepsPerFrame) : "auto";
+        nlohmann::json row = {
+            {"size", n}, {"steps_per_frame", label}, {"baseline_cpu_iterations_per_s", baseline}};
+        if (!run.ok) {
+            std::printf("%-30s %-6d %12s  failed: %s\n", "", n, label.c_str(), run.error.c_str());
+            row["error"] = run.error;
+        } else {
+            std::printf("%-30s %-6d %12s %10.1f %12.0f %12.3f\n", "", n, label.c_str(), run.fps,
+                        run.stepsPerSecond, run.stepsPerSecond / baseline);
+            row["frames_per_s"] = run.fps;
+            row["steps_per_s"] = run.stepsPerSecond;
+            row["over_baseline"] = run.stepsPerSecond / baseline;
+        }
+        std::fflush(stdout);
+        rows.push_back(row);
+    }
+    std::printf("  baseline: %.0f cpu it/s at %dx%d; goal: 0.8 of it at 30 frames/s or more\n",
+                baseline, n, n);
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    return rows;
+}
+
+} // namespace morphogen::cli
