@@ -57,6 +57,7 @@ TEST(ImageIo, EightBitQuantisationRoundsAsLround) {
         ++checked;
     }
     EXPECT_GT(checked, 1000000);
+    EXPECT_EQ(toUnorm8(std::nanf("")), 0);
 }
 
 TEST(ImageIo, FormatFollowsTheExtension) {

@@ -27,7 +27,8 @@ inline std::uint8_t toUnorm8(float v) {
     // lround's half away from zero, without its libm call (it kept the
     // display's per-frame loop from vectorising): x + 0.5 is exact in double
     // for any float x in [0, 255], so truncating it rounds as lround does.
-    const float x = std::clamp(v, 0.0f, 1.0f) * 255.0f;
+    // NaN gives 0 (a float-to-int conversion of NaN would be undefined).
+    const float x = v > 0.0f ? std::min(v, 1.0f) * 255.0f : 0.0f;
     return std::uint8_t(int(double(x) + 0.5));
 }
 
