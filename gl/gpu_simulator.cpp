@@ -191,8 +191,16 @@ GpuSimulator::GpuSimulator(const Session& session)
                 m_cross = Texture2D(atlas->width(), atlas->height(), GL_RGBA32F);
                 m_cross.uploadRgba(diagonalTexels(*weights));
             }
+            if (m_k.tensorWeighted()) {
+                const std::array<std::vector<float>, 4> texels = tensorTexels(*weights->tensor);
+                for (std::size_t i = 0; i < 4; ++i) {
+                    m_tensor[i] = Texture2D(atlas->width(), atlas->height(), GL_RGBA32F);
+                    m_tensor[i].uploadRgba(texels[i]);
+                }
+            }
         }
-        if (op.form == DiffusionOperator::Form::Laplacian9 || m_k.crossWeighted()) {
+        if (op.form == DiffusionOperator::Form::Laplacian9 || m_k.crossWeighted() ||
+            m_k.tensorWeighted()) {
             // The weights' diagonals are non-zero only where both orders agree:
             // the cross term reads order 0 alone.
             const auto diagonals = atlasDiagonals(*atlas);
@@ -270,6 +278,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         defines.push_back("ATLAS_WEIGHTS");
     if (m_k.crossWeighted())
         defines.push_back("ATLAS_CROSS");
+    if (m_k.tensorWeighted())
+        defines.push_back("ATLAS_TENSOR");
     if (pass)
         defines.push_back(pass);
     if (!m_frozenMask.empty())
@@ -294,6 +304,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         glUniform1i(program.uniform("uDiagonals1"), kDiagonalUnits[1]);
         glUniform1i(program.uniform("uWeights"), kWeightsUnit);
         glUniform1i(program.uniform("uCross"), kCrossUnit);
+        for (int i = 0; i < 4; ++i)
+            glUniform1i(program.uniform(("uTensor" + std::to_string(i)).c_str()), kTensorUnits[i]);
         glUniform3i(program.uniform("uAtlas"), atlas->tileSize(), atlas->tilesPerRow(),
                     atlas->tileCount());
     }
@@ -319,6 +331,9 @@ void GpuSimulator::bindAuxiliaryTextures() const {
         m_weights.bind(kWeightsUnit);
     if (m_cross.id())
         m_cross.bind(kCrossUnit);
+    for (int i = 0; i < 4; ++i)
+        if (m_tensor[i].id())
+            m_tensor[i].bind(kTensorUnits[i]);
     for (int order = 0; order < 2; ++order)
         if (m_diagonals[order].id())
             m_diagonals[order].bind(kDiagonalUnits[order]);
@@ -485,6 +500,15 @@ void GpuSimulator::setLiveUniforms(const Program& program) const {
         setChemicalVec4s(program.uniform("uMapM"), m, textures);
         setChemicalVec4s(program.uniform("uMapDc"), dc, textures);
         setChemicalVec4s(program.uniform("uMapDs"), ds, textures);
+    }
+    if (m_k.tensorWeighted()) {
+        std::array<std::array<float, kMaxChemicals>, 3> mix{};
+        for (int c = 0; c < op.chemicals; ++c)
+            for (std::size_t q = 0; q < 3; ++q)
+                mix[q][std::size_t(c)] = m_k.tensorMixes[std::size_t(c)][q];
+        setChemicalVec4s(program.uniform("uMixP"), mix[0], textures);
+        setChemicalVec4s(program.uniform("uMixQ1"), mix[1], textures);
+        setChemicalVec4s(program.uniform("uMixQ2"), mix[2], textures);
     }
 }
 

@@ -19,6 +19,11 @@ constexpr int kDiagonalUnits[] = {10, 11}; // 9-point on an atlas: diagonals, bo
 constexpr int kBrushMaskUnit = 12;         // brush passes: the region's weights and noise
 constexpr int kWeightsUnit = 13;           // weighted atlases: 4 coefficients per texel (RGBA32F)
 constexpr int kCrossUnit = 14; // weights with diagonals: 4 diagonal coefficients (RGBA32F)
+// Anisotropy on an atlas (AtlasTensorWeights: L1's links, diagonals, L2's): the
+// units of the diffusion map and the semi-implicit right-hand sides, which an
+// atlas never has (StepConstants refuses both there), so the step program stays
+// within OpenGL 3.3's 16 units.
+constexpr int kTensorUnits[] = {1, 2, 7, 8};
 
 // Two sets of `count` same-size float textures, each set behind one
 // framebuffer (multiple render targets); each pass samples the current set
@@ -127,6 +132,7 @@ private:
     Texture2D m_diagonals[2]; // 9-point on an atlas: the diagonals, x then y / y then x
     Texture2D m_weights;      // weighted atlases: +x, +y, -x, -y coefficients per texel
     Texture2D m_cross;        // weights with diagonals: their 4 coefficients per texel
+    Texture2D m_tensor[4];    // anisotropy: AtlasTensorWeights as tensorTexels
     std::vector<std::uint8_t> m_frozenMask;
     Program m_brushProgram; // built on the first chemical brush
     // Localized runs: the active tiles' rectangles (runs of consecutive tiles

@@ -27,6 +27,10 @@
 // the grid's diagonals, border texels uDiagonals0 (one order: a non-zero
 // coefficient has both orders reach the same texel), in the CPU's order
 // (StepConstants::diagonalPlanes).
+// ATLAS_TENSOR (with ATLAS_WEIGHTS) adds anisotropy on a surface: uTensor0..3
+// hold the two tensor operators' links and diagonals (AtlasTensorWeights),
+// summed as the weights are, and chemical i's term is
+// (uMixP S + uMixQ1 L1) + uMixQ2 L2 (StepConstants::tensorMixes, rates included).
 // The integrator is a second variant: (none) explicit Euler; RHS_PASS and
 // JACOBI_PASS the two passes of a semi-implicit step.
 // react() comes from the model's snippet, compiled in front of this file.
@@ -115,7 +119,7 @@ uniform ivec3 uAtlas; // texels per tile side, tiles per row, tile count
 #ifdef ATLAS_WEIGHTS
 uniform sampler2D uWeights; // +x, +y, -x, -y coefficients of this texel's links
 #endif
-#if defined(STENCIL_9) || defined(ATLAS_CROSS)
+#if defined(STENCIL_9) || defined(ATLAS_CROSS) || defined(ATLAS_TENSOR)
 uniform usampler2D uDiagonals0; // (-x,-y), (+x,-y), (-x,+y), (+x,+y), reached x then y
 #endif
 #ifdef STENCIL_9
@@ -123,6 +127,15 @@ uniform usampler2D uDiagonals1; // the same, reached y then x
 #endif
 #ifdef ATLAS_CROSS
 uniform sampler2D uCross; // the diagonal coefficients, uDiagonals0's order
+#endif
+#ifdef ATLAS_TENSOR
+uniform sampler2D uTensor0; // L1's links (+x, +y, -x, -y)
+uniform sampler2D uTensor1; // L1's diagonals (uDiagonals0's order)
+uniform sampler2D uTensor2; // L2's links
+uniform sampler2D uTensor3; // L2's diagonals
+uniform vec4 uMixP[STATE_TEXTURES];
+uniform vec4 uMixQ1[STATE_TEXTURES];
+uniform vec4 uMixQ2[STATE_TEXTURES];
 #endif
 bool gAtlasBorder;    // this fragment's texel is on its tile's border ring
 ivec2 unpackTexel(uint address) {
@@ -195,8 +208,7 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
     }
     float wsum = ((w.z + w.x) + w.w) + w.y;
     vec4 sides = ((w.z * l + w.x * r) + w.w * d) + w.y * u;
-#ifdef ATLAS_CROSS
-    vec4 k = texelFetch(uCross, ivec2(gl_FragCoord.xy), 0);
+#if defined(ATLAS_CROSS) || defined(ATLAS_TENSOR)
     vec4 mm, pm, mp, pp;
     if (gAtlasBorder) {
         uvec4 g = texelFetch(uDiagonals0, ivec2(gl_FragCoord.xy), 0);
@@ -210,8 +222,23 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
         mp = AT(-1, 1);
         pp = AT(1, 1);
     }
+#endif
+#ifdef ATLAS_CROSS
+    vec4 k = texelFetch(uCross, ivec2(gl_FragCoord.xy), 0);
     wsum += (k.x + k.y) + (k.z + k.w);
     sides += (k.x * mm + k.y * pm) + (k.z * mp + k.w * pp);
+#endif
+#ifdef ATLAS_TENSOR
+    vec4 tensorTerm[2];
+    for (int q = 0; q < 2; ++q) {
+        ivec2 at = ivec2(gl_FragCoord.xy);
+        vec4 a = q == 0 ? texelFetch(uTensor0, at, 0) : texelFetch(uTensor2, at, 0);
+        vec4 b = q == 0 ? texelFetch(uTensor1, at, 0) : texelFetch(uTensor3, at, 0);
+        float sum = (((a.z + a.x) + a.w) + a.y) + ((b.x + b.y) + (b.z + b.w));
+        vec4 side = (((a.z * l + a.x * r) + a.w * d) + a.y * u) +
+                    ((b.x * mm + b.y * pm) + (b.z * mp + b.w * pp));
+        tensorTerm[q] = side - sum * c;
+    }
 #endif
 #elif defined(ATLAS)
     // The CPU's order: -x, +x, -y, +y.
@@ -243,6 +270,8 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
     vec4 corners = AT(-1, -1) + AT(1, -1) + AT(-1, 1) + AT(1, 1);
 #endif
     return uDiffusion[t] * ((4.0 * sides + corners - 20.0 * c) * (1.0 / 6.0));
+#elif defined(ATLAS_TENSOR)
+    return (uMixP[t] * (sides - wsum * c) + uMixQ1[t] * tensorTerm[0]) + uMixQ2[t] * tensorTerm[1];
 #elif defined(ATLAS_WEIGHTS)
     return uDiffusion[t] * (sides - wsum * c);
 #else

@@ -2,13 +2,17 @@
 // agree with the CPU backend on the cube and on rotated tiles, conserve mass,
 // and copy unused texels through.
 
+#include <numeric>
+
 #include <gtest/gtest.h>
 
 #include "atlas_checks.hpp"
 #include "core/domain/atlas_weights.hpp"
 #include "core/mesh/mesh_samples.hpp"
 #include "core/models/initial_condition.hpp"
+#include "core/session/param_map.hpp"
 #include "core/sim/cpu_simulator.hpp"
+#include "core/surface/surface_setup.hpp"
 #include "core/surface/surface_weights.hpp"
 #include "core/surface/tile_builder.hpp"
 #include "gl/gpu_simulator.hpp"
@@ -27,17 +31,24 @@ template <class Sim> State runOn(const Session& s, const State& start, int steps
     return sim.state();
 }
 
+// Runs `s` from `start` for 60 steps on both backends; they must agree (the
+// same sums in the same order, but llvmpipe and drivers may contract
+// multiply-adds: relative 1e-5 of the value range) and the state must move.
+// Returns the GPU's state.
+State expectBackendsAgree(const Session& s, const State& start) {
+    const State cpu = runOn<CpuSimulator>(s, start, 60);
+    const State gpu = runOn<gl::GpuSimulator>(s, start, 60);
+    EXPECT_LT(test::maxAbsDifference(cpu, gpu), 1e-5f * test::maxAbsValue(cpu));
+    EXPECT_GT(test::maxAbsDifference(cpu, start), 1e-3f) << "nothing happened";
+    return gpu;
+}
+
 void expectBackendsAgree(std::shared_ptr<const Atlas> atlas, Stencil stencil) {
     SCOPED_TRACE(stencil == Stencil::FivePoint ? "5-point" : "9-point");
     const Session s = test::atlasSession(atlas, stencil);
     const State start =
         makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, 11);
-    const State cpu = runOn<CpuSimulator>(s, start, 60);
-    const State gpu = runOn<gl::GpuSimulator>(s, start, 60);
-    // Float sums in the same order on both, but llvmpipe and drivers may
-    // contract multiply-adds: relative 1e-5 of the value range after 60 steps.
-    EXPECT_LT(test::maxAbsDifference(cpu, gpu), 1e-5f * test::maxAbsValue(cpu));
-    EXPECT_GT(test::maxAbsDifference(cpu, start), 1e-3f) << "nothing happened";
+    expectBackendsAgree(s, start);
 }
 
 } // namespace
@@ -106,12 +117,7 @@ TEST(AtlasGpu, AgreesWithTheCpuWithNonUniformWeights) {
         const Session s = withWeights(test::atlasSession(atlas), test::symmetricWeights(*atlas, 5));
         const State start =
             makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, 11);
-        const State cpu = runOn<CpuSimulator>(s, start, 60);
-        const State gpu = runOn<gl::GpuSimulator>(s, start, 60);
-        // The same sums in the same order; a driver may contract multiply-adds
-        // (more of them here than unweighted): relative 1e-5 of the range.
-        EXPECT_LT(test::maxAbsDifference(cpu, gpu), 1e-5f * test::maxAbsValue(cpu));
-        EXPECT_GT(test::maxAbsDifference(cpu, start), 1e-3f) << "nothing happened";
+        const State gpu = expectBackendsAgree(s, start);
         // The weights matter: the unweighted run differs by far more.
         const State plain = runOn<gl::GpuSimulator>(test::atlasSession(atlas), start, 60);
         EXPECT_GT(test::maxAbsDifference(plain, gpu), 1e-3f);
@@ -128,10 +134,7 @@ TEST(AtlasGpu, AgreesWithTheCpuWithNinePointWeights) {
             withWeights(test::atlasSession(atlas), test::symmetricNinePointWeights(*atlas, 5));
         const State start =
             makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, 11);
-        const State cpu = runOn<CpuSimulator>(s, start, 60);
-        const State gpu = runOn<gl::GpuSimulator>(s, start, 60);
-        EXPECT_LT(test::maxAbsDifference(cpu, gpu), 1e-5f * test::maxAbsValue(cpu));
-        EXPECT_GT(test::maxAbsDifference(cpu, start), 1e-3f) << "nothing happened";
+        const State gpu = expectBackendsAgree(s, start);
         // The diagonals matter: the same weights without them differ by far more.
         AtlasWeights five = test::symmetricNinePointWeights(*atlas, 5);
         five.diagonal.clear();
@@ -157,10 +160,7 @@ TEST(AtlasGpu, AgreesWithTheCpuWithSurfaceNinePointWeights) {
     s = withWeights(s, weights);
     const State start =
         makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, 11);
-    const State cpu = runOn<CpuSimulator>(s, start, 60);
-    const State gpu = runOn<gl::GpuSimulator>(s, start, 60);
-    EXPECT_LT(test::maxAbsDifference(cpu, gpu), 1e-5f * test::maxAbsValue(cpu));
-    EXPECT_GT(test::maxAbsDifference(cpu, start), 1e-3f) << "nothing happened";
+    expectBackendsAgree(s, start);
 }
 
 TEST(AtlasGpu, NinePointWeightsConserveTheAreaWeightedAmount) {
@@ -183,4 +183,106 @@ TEST(AtlasGpu, SymmetricWeightsConserveTheAreaWeightedAmount) {
     const double before = test::areaWeightedSum(start, *atlas, weights, 0);
     EXPECT_NEAR(test::areaWeightedSum(end, *atlas, weights, 0), before, 1e-5 * before);
     EXPECT_GT(test::maxAbsDifference(end, start), 0.05f) << "nothing diffused";
+}
+
+// Anisotropic diffusion on a surface (the ATLAS_TENSOR variant): the tensor
+// weights of a direction field on a simplified sphere (the field fades to zero
+// at its poles), each chemical with its own Witkin-Kass tensor: both backends
+// agree, and the tensor matters.
+TEST(AtlasGpu, AgreesWithTheCpuWithSurfaceTensorWeights) {
+    TileOptions options;
+    options.tileSize = 6;
+    options.tiles = 300;
+    const SurfaceTiles tiles = buildSurfaceTiles(icosphere(3), options);
+    SurfaceWeightOptions weightOptions;
+    weightOptions.direction = SurfaceDirection{}; // along y
+    auto weights = std::make_shared<const AtlasWeights>(surfaceWeights(tiles, weightOptions));
+    ASSERT_TRUE(weights->tensor);
+
+    Session s = test::atlasSession(tiles.atlas);
+    s.diffusion.type = DiffusionType::Anisotropic;
+    s.diffusion.anisotropic = {{"u", {30.0f, 2.0f, 1.0f}}, {"v", {90.0f, 1.5f, 1.0f}}};
+    const float rates[2] = {s.params.at("Du"), s.params.at("Dv")};
+    double largest = 0;
+    for (const auto& mix : sessionTensorMixes(s, rates))
+        largest = std::max(largest, maxTensorSum(*weights, mix));
+    // Within the explicit limit of the combined operators (Gershgorin: 2 * sum).
+    s.dt = float(0.9 / largest);
+    useAtlas(s, s.atlas, weights);
+
+    const State start =
+        makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, 11);
+    const State gpu = expectBackendsAgree(s, start);
+
+    // The tensors matter: the same run with isotropic tensors differs by far more.
+    Session isotropic = s;
+    isotropic.diffusion.anisotropic = {{"u", {0.0f, 1.0f, 1.0f}}, {"v", {0.0f, 1.0f, 1.0f}}};
+    const State plain = runOn<gl::GpuSimulator>(isotropic, start, 60);
+    EXPECT_GT(test::maxAbsDifference(plain, gpu), 1e-3f);
+}
+
+// Pure anisotropic diffusion conserves the area-weighted amount on the GPU: the
+// tensor operators' fluxes are the same from both sides of every pair.
+TEST(AtlasGpu, SurfaceTensorWeightsConserveTheAreaWeightedAmount) {
+    TileOptions options;
+    options.tileSize = 6;
+    options.tiles = 200;
+    const SurfaceTiles tiles = buildSurfaceTiles(torus(24), options);
+    SurfaceWeightOptions weightOptions;
+    weightOptions.direction =
+        SurfaceDirection{SurfaceDirection::Type::Around, {0, 0, 1}, {0, 0, 0}};
+    auto weights = std::make_shared<const AtlasWeights>(surfaceWeights(tiles, weightOptions));
+    Session s = test::pureDiffusionSession(tiles.atlas);
+    s.diffusion.type = DiffusionType::Anisotropic;
+    s.diffusion.anisotropic = {{"u", {20.0f, 2.0f, 0.5f}}, {"v", {0.0f, 1.0f, 1.0f}}};
+    const float rates[2] = {s.params.at("Du"), s.params.at("Dv")};
+    s.dt = float(0.9 / maxTensorSum(*weights, sessionTensorMixes(s, rates)[0]));
+    useAtlas(s, s.atlas, weights);
+    const State start = test::randomUsedState(*tiles.atlas, 3);
+    const State end = runOn<gl::GpuSimulator>(s, start, 200);
+    const double before = test::areaWeightedSum(start, *tiles.atlas, *weights, 0);
+    // Float sums of ~10^4 texels over 200 steps: relative 1e-5.
+    EXPECT_NEAR(test::areaWeightedSum(end, *tiles.atlas, *weights, 0), before, 1e-5 * before);
+    EXPECT_GT(test::maxAbsDifference(end, start), 0.05f) << "nothing diffused";
+}
+
+// Parameter maps on a mesh (fields in space, evaluateSurfaceParamMap): a map of
+// a reaction parameter and one of a diffusion rate, on the sample sphere's
+// weighted atlas; both backends agree over the whole atlas and over a set of
+// active tiles (localized steps), and the maps matter.
+TEST(AtlasGpu, AgreesWithTheCpuWithParamMapsOnAMesh) {
+    Session s = loadPreset("gs_coral");
+    s.length = 60;
+    s.surface.mesh = "sample:sphere";
+    s.surface.tiles = 120;
+    s.surface.tileSize = 4;
+    ParamMapSpec k{ParamMapSpec::Field::LinearY, 0.055f, 0.065f};
+    ParamMapSpec du{ParamMapSpec::Field::Noise, 0.1f, 0.2f};
+    du.scale = 10;
+    s.paramMaps = {{"k", k}, {"Du", du}};
+    (void)setUpSurface(s);
+    // Within the explicit limit of the weights at the map's largest rate.
+    s.dt = 0.9f / (0.2f * maxCoefficientSum(*s.atlasWeights));
+    const State start =
+        makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, 11);
+    const State gpu = expectBackendsAgree(s, start);
+    Session plain = s;
+    plain.paramMaps.clear();
+    EXPECT_GT(test::maxAbsDifference(runOn<gl::GpuSimulator>(plain, start, 60), gpu), 1e-3f)
+        << "the maps changed nothing";
+
+    // Localized: the first 20 tiles only.
+    std::vector<int> tiles(20);
+    std::iota(tiles.begin(), tiles.end(), 0);
+    auto local = [&](auto simulator) {
+        simulator.setState(start);
+        simulator.setActiveTiles(tiles);
+        simulator.run(60);
+        return simulator.state();
+    };
+    test::glContext();
+    const State cpuLocal = local(CpuSimulator(s));
+    const State gpuLocal = local(gl::GpuSimulator(s));
+    EXPECT_LT(test::maxAbsDifference(cpuLocal, gpuLocal), 1e-5f * test::maxAbsValue(cpuLocal));
+    EXPECT_GT(test::maxAbsDifference(cpuLocal, start), 1e-3f) << "nothing happened";
 }

@@ -83,6 +83,32 @@ if(cross OR NOT at EQUAL -1)
   message(SEND_ERROR "--no-cross-term: cross_term ${cross}, plan: ${last_stderr}")
 endif()
 
+# Anisotropic presets follow a direction field on the model (--direction),
+# recorded in the session.
+run(0 "" render --mesh sample:torus --preset wk_zebra ${small} --direction around:0,0,1@0,0,0.5
+    --out zebra.png)
+file(READ "${WORK}/zebra.json" session)
+string(JSON axisZ GET "${session}" surface direction around 2)
+string(JSON throughZ GET "${session}" surface direction through 2)
+if(NOT axisZ EQUAL 1 OR NOT throughZ EQUAL 0.5)
+  message(SEND_ERROR "zebra.json's direction: around z ${axisZ}, through z ${throughZ}")
+endif()
+
+# Parameter maps on a model are fields in space; an image map is refused.
+run(0 "" render --mesh sample:sphere --preset turk_large_spots ${small}
+    --param-map s=linear_y:0.03:0.08 --out mapped.png)
+file(READ "${WORK}/mapped.json" session)
+string(JSON field GET "${session}" param_maps s field)
+if(NOT field STREQUAL "linear_y")
+  message(SEND_ERROR "mapped.json's param_maps.s.field is '${field}'")
+endif()
+
+# Strong anisotropy (wk_zebra, a1/a2 = 2) on the sphere's automatic tiles runs (a
+# smoke check: the mixed-stencil version's blow-ups came after some 300 steps of
+# 2000, too long for this suite, and not reproduced at 700 here).
+run(0 "features on the surface" render --mesh sample:sphere --preset wk_zebra --steps 200
+    --no-settle --backend cpu --resolution 96x96 --out zebra_sphere.png)
+
 # Bad surface input: exit 2, the flag, field or file named, nothing written.
 run(2 "--tile-size '2'" render --mesh sample:sphere --preset turk_large_spots --tile-size 2 --out bad.png)
 run(2 "--tiles '1'" render --mesh sample:sphere --preset turk_large_spots --tiles 1 --out bad.png)
@@ -98,8 +124,14 @@ run(2 "the file is empty" render --mesh empty.obj --preset turk_large_spots --ou
 # Three triangles on one edge: not a surface tiles can cover.
 file(WRITE "${WORK}/fin.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n")
 run(2 "non-manifold" render --mesh fin.obj --preset turk_large_spots --out bad.png)
-# Anisotropic diffusion needs a direction field on the surface: refused, naming the operator.
-run(2 "anisotropic" render --mesh sample:sphere --preset wk_zebra ${small} --out bad.png)
+# Generalized diffusion has no surface form yet: refused, naming the operator.
+run(2 "cannot run on an atlas domain" render --mesh sample:sphere --preset gs_generalized_e ${small} --out bad.png)
+run(2 "an image field cannot vary a parameter over a mesh" render --mesh sample:sphere
+    --preset turk_large_spots ${small} --param-map s=image:${WORK}/sphere.png:0.03:0.08
+    --out bad.png)
+run(2 "--direction 'sideways:0,1,0'" render --mesh sample:torus --preset wk_zebra --direction sideways:0,1,0 --out bad.png)
+run(2 "the axis is 0,0,0" render --mesh sample:torus --preset wk_zebra --direction along:0,0,0 --out bad.png)
+run(2 "--direction point" render --mesh sample:torus --preset wk_zebra --direction around:0,0,1@1,2 --out bad.png)
 if(EXISTS "${WORK}/bad.png" OR EXISTS "${WORK}/bad.json")
   message(SEND_ERROR "a refused surface render wrote bad.png or bad.json")
 endif()

@@ -17,6 +17,7 @@
 
 #include "core/io/image_io.hpp"
 #include "core/session/session.hpp"
+#include "test_support.hpp"
 
 using namespace morphogen;
 
@@ -24,9 +25,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// One directory per process: ctest runs this binary twice at once (designer_xtest and
+// designer_bench_xtest), and a shared directory let one run delete the other's script
+// mid-test (CI: the scripted session exited 1 with its stderr file gone).
 fs::path work() {
     static const fs::path dir = [] {
-        fs::path d = fs::temp_directory_path() / "morphogen_designer_xtest";
+        fs::path d = test::scratchDir("morphogen_designer_xtest");
         fs::remove_all(d);
         fs::create_directories(d);
         return d;

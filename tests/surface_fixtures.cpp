@@ -4,6 +4,8 @@
 #include <cmath>
 #include <memory>
 
+#include "core/surface/tile_builder.hpp"
+
 namespace morphogen::test {
 
 namespace {
@@ -80,6 +82,35 @@ std::vector<std::array<std::uint8_t, 4>> rampColours(const std::vector<float>& v
                        std::uint8_t(std::lround(b * 255)), 255});
     }
     return out;
+}
+
+SurfaceTiles buildTiles(const TriangleMesh& mesh, int tiles, int tileSize) {
+    TileOptions options;
+    options.tileSize = tileSize;
+    options.tiles = tiles;
+    return buildSurfaceTiles(mesh, options);
+}
+
+TriangleMesh equilateralSheet(int m) {
+    TriangleMesh mesh;
+    const float h = std::sqrt(3.0f) / 2.0f / float(m);
+    for (int j = 0; j <= m; ++j)
+        for (int i = 0; i <= m; ++i)
+            mesh.positions.emplace_back((float(i) + 0.5f * float(j % 2)) / float(m), float(j) * h,
+                                        0.0f);
+    const auto id = [&](int i, int j) { return std::uint32_t(j * (m + 1) + i); };
+    for (int j = 0; j < m; ++j)
+        for (int i = 0; i < m; ++i) {
+            if (j % 2 == 0) {
+                mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+                if (i + 1 < m)
+                    mesh.triangles.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+            } else {
+                mesh.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+                mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            }
+        }
+    return mesh;
 }
 
 } // namespace morphogen::test

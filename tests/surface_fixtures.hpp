@@ -20,6 +20,13 @@ namespace morphogen::test {
 SurfaceTiles cubeSphereTiles(int tileSize, float radius = 1.0f,
                              const Eigen::Matrix3f& rotation = Eigen::Matrix3f::Identity());
 
+// buildSurfaceTiles with this budget and tile size.
+SurfaceTiles buildTiles(const TriangleMesh& mesh, int tiles, int tileSize);
+
+// Equilateral triangles of side 1/m in m rows of m, the odd rows shifted by half
+// a side: the shape a simplifier aims for. Counter-clockwise seen from +z.
+TriangleMesh equilateralSheet(int m);
+
 // A field over the surface as per-cell values (unused cells 0).
 std::vector<float> fieldOnTexels(const SurfaceTiles& tiles,
                                  const std::function<float(const Eigen::Vector3f&)>& f);

@@ -19,21 +19,17 @@
 #include "core/sim/cpu_simulator.hpp"
 #include "core/surface/surface_weights.hpp"
 #include "core/surface/tile_builder.hpp"
+#include "surface_fixtures.hpp"
 
 using namespace morphogen;
+using test::buildTiles;
+using test::equilateralSheet;
 
 namespace {
 
-SurfaceTiles build(const TriangleMesh& mesh, int tiles, int tileSize) {
-    TileOptions options;
-    options.tileSize = tileSize;
-    options.tiles = tiles;
-    return buildSurfaceTiles(mesh, options);
-}
-
 // The unit sphere (icosphere level 4) in 600 tiles of 6x6.
 const SurfaceTiles& sphereTiles() {
-    static const SurfaceTiles t = build(icosphere(4), 600, 6);
+    static const SurfaceTiles t = buildTiles(icosphere(4), 600, 6);
     return t;
 }
 
@@ -49,30 +45,6 @@ TriangleMesh plane(int m) {
         for (int i = 0; i < m; ++i) {
             mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
             mesh.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-        }
-    return mesh;
-}
-
-// Equilateral triangles of side 1/m in m rows of m, the odd rows shifted by half
-// a side: the shape a simplifier aims for. Counter-clockwise seen from +z.
-TriangleMesh equilateralSheet(int m) {
-    TriangleMesh mesh;
-    const float h = std::sqrt(3.0f) / 2.0f / float(m);
-    for (int j = 0; j <= m; ++j)
-        for (int i = 0; i <= m; ++i)
-            mesh.positions.emplace_back((float(i) + 0.5f * float(j % 2)) / float(m), float(j) * h,
-                                        0.0f);
-    const auto id = [&](int i, int j) { return std::uint32_t(j * (m + 1) + i); };
-    for (int j = 0; j < m; ++j)
-        for (int i = 0; i < m; ++i) {
-            if (j % 2 == 0) {
-                mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
-                if (i + 1 < m)
-                    mesh.triangles.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
-            } else {
-                mesh.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-                mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-            }
         }
     return mesh;
 }
@@ -205,7 +177,7 @@ TEST(SurfaceWeights, UncorrectedIsAFlatGridOfMeanTexels) {
 // An open sheet: steps into unglued edges have coefficient 0 (zero flux), the
 // others are positive.
 TEST(SurfaceWeights, OpenBoundariesHaveZeroFlux) {
-    const SurfaceTiles tiles = build(plane(2), 0, 4);
+    const SurfaceTiles tiles = buildTiles(plane(2), 0, 4);
     const Atlas& atlas = *tiles.atlas;
     const AtlasWeights w = surfaceWeights(tiles, {1.0});
     int zero = 0;
@@ -299,7 +271,7 @@ TEST(SurfaceWeights, BlobSpreadsAsOnAFlatSheetAtValence3To6) {
         SCOPED_TRACE(std::string(sheet.name) +
                      (sheet.cross ? " sheet, 9-point" : " sheet, 5-point"));
         std::printf("%s sheet, %s\n", sheet.name, sheet.cross ? "9-point" : "5-point");
-        const SurfaceTiles tiles = build(sheet.mesh, 0, 8);
+        const SurfaceTiles tiles = buildTiles(sheet.mesh, 0, 8);
         const Atlas& atlas = *tiles.atlas;
         SurfaceWeightOptions options;
         options.crossTerm = sheet.cross;
@@ -418,7 +390,7 @@ TEST(SurfaceWeights, CurvatureScaleShrinksFeaturesWhereCurved) {
 // strength 1 the mean factor over the outer band is below 0.7 of the inner band's
 // (measured 0.62: 0.43 against 0.69, with the median |H| about 1.2).
 TEST(SurfaceWeights, CurvatureScaleIsSmallerWhereTheTorusBendsMore) {
-    const SurfaceTiles tiles = build(torus(32), 300, 4);
+    const SurfaceTiles tiles = buildTiles(torus(32), 300, 4);
     const Atlas& atlas = *tiles.atlas;
     const std::vector<float> f = curvatureScale(tiles, 1.0);
     double outer = 0, inner = 0;

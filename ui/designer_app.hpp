@@ -147,6 +147,7 @@ private:
     void drawMenuBar();
     void drawControls(float x, float y, float w, float h);
     void drawModelSection();
+    void drawDirectionControls(const Session& base);
     void drawParamsSection();
     void drawBrushSection();
     void drawCascadeSection();

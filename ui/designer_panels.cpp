@@ -214,6 +214,8 @@ void Designer::drawModelSection() {
                 });
             ImGui::PopID();
         }
+        if (base.surface.active())
+            drawDirectionControls(base);
     } else if (base.diffusion.type == DiffusionType::Generalized) {
         for (const auto& entry : base.diffusion.generalized) {
             const std::string& chemical = entry.first;
@@ -266,6 +268,37 @@ void Designer::drawModelSection() {
         });
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("cells of the canvas; the pattern keeps its size in the picture");
+}
+
+// On a model the tensors' angles are measured from a direction field on the
+// surface (SurfaceSpec::direction): along an axis, or around one.
+void Designer::drawDirectionControls(const Session& base) {
+    const SurfaceDirection& d = base.surface.direction;
+    int kind = d.type == SurfaceDirection::Type::Along ? 0 : 1;
+    const char* kinds[] = {"along an axis", "around an axis"};
+    float axis[3] = {float(d.axis[0]), float(d.axis[1]), float(d.axis[2])};
+    float through[3] = {float(d.through[0]), float(d.through[1]), float(d.through[2])};
+    bool changed = ImGui::Combo("angle 0", &kind, kinds, 2);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("on the model, the tensors' angle 0 follows this direction field:\n"
+                          "an axis projected onto the surface, or circles about an axis");
+    ImGui::DragFloat3("axis", axis, 0.01f, -1.0f, 1.0f);
+    changed |= ImGui::IsItemDeactivatedAfterEdit();
+    if (kind == 1) {
+        ImGui::DragFloat3("through", through, 0.01f);
+        changed |= ImGui::IsItemDeactivatedAfterEdit();
+    }
+    if (!changed)
+        return;
+    guarded("direction", [&] {
+        const auto vector = [](const float* v) { return json::array({v[0], v[1], v[2]}); };
+        Session s = edited(base, [&](json& j) {
+            j["surface"]["direction"] =
+                kind == 0 ? json{{"along", vector(axis)}}
+                          : json{{"around", vector(axis)}, {"through", vector(through)}};
+        });
+        m_doc.replace(std::move(s), "direction on the model");
+    });
 }
 
 void Designer::drawParamsSection() {

@@ -30,6 +30,43 @@ int autoOrInteger(const std::string& flag, const std::string& text, int min, int
     return int(integerFlag(flag, text, min, max, " (or auto)"));
 }
 
+// X,Y,Z: three numbers within kMaxSurfacePoint.
+std::array<double, 3> pointFlag(const std::string& what, const std::string& text) {
+    const std::vector<std::string> parts = splitCommas(text);
+    if (parts.size() != 3)
+        throw InputError(what + " '" + text + "': expected X,Y,Z (three numbers, e.g. 0,1,0)");
+    std::array<double, 3> v{};
+    for (std::size_t i = 0; i < 3; ++i)
+        v[i] = numberFlag(what, parts[i], -kMaxSurfacePoint, kMaxSurfacePoint);
+    return v;
+}
+
+SurfaceDirection parseDirection(const std::string& text) {
+    const std::string usage = "--direction '" + text +
+                              "': expected along:X,Y,Z or around:X,Y,Z[@PX,PY,PZ] (e.g. "
+                              "along:0,1,0 or around:0,1,0@0,0,0)";
+    const std::size_t colon = text.find(':');
+    if (colon == std::string::npos)
+        throw InputError(usage);
+    const std::string kind = text.substr(0, colon), rest = text.substr(colon + 1);
+    SurfaceDirection d;
+    if (kind == "along") {
+        d.type = SurfaceDirection::Type::Along;
+        d.axis = pointFlag("--direction axis", rest);
+    } else if (kind == "around") {
+        d.type = SurfaceDirection::Type::Around;
+        const std::size_t at = rest.find('@');
+        d.axis = pointFlag("--direction axis", rest.substr(0, at));
+        if (at != std::string::npos)
+            d.through = pointFlag("--direction point", rest.substr(at + 1));
+    } else {
+        throw InputError(usage);
+    }
+    if (d.axis[0] == 0 && d.axis[1] == 0 && d.axis[2] == 0)
+        throw InputError("--direction '" + text + "': the axis is 0,0,0; it needs a length");
+    return d;
+}
+
 } // namespace
 
 void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
@@ -59,6 +96,12 @@ void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
                    "shrink features where the mean curvature is high (strength, 0 = off; "
                    "size factor 1 / (1 + S |H| / median |H|))")
         ->group(group);
+    cmd.add_option("--direction", f.direction,
+                   "anisotropic presets' 0-degree direction on the model: along:X,Y,Z (a world "
+                   "axis projected onto the surface; default along:0,1,0) or "
+                   "around:X,Y,Z[@PX,PY,PZ] (circles about the axis through point P, default the "
+                   "origin)")
+        ->group(group);
     cmd.add_option("--view", f.view,
                    "camera: AZIMUTH,ELEVATION[,DISTANCE] in degrees and bounding-sphere radii "
                    "(default 30,20,0: 0 frames the model)")
@@ -72,8 +115,8 @@ void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
 
 bool anySurfaceFlag(const SurfaceFlags& f) {
     return !f.mesh.empty() || !f.tileSize.empty() || !f.tiles.empty() || f.noMetricCorrection ||
-           f.noCrossTerm || !f.curvatureScale.empty() || !f.view.empty() || !f.resolution.empty() ||
-           !f.turntable.empty();
+           f.noCrossTerm || !f.curvatureScale.empty() || !f.direction.empty() || !f.view.empty() ||
+           !f.resolution.empty() || !f.turntable.empty();
 }
 
 void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
@@ -89,7 +132,8 @@ void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
     if (!s.surface.active())
         throw InputError(
             "the surface flags (--tile-size, --tiles, --no-metric-correction, "
-            "--no-cross-term, --curvature-scale, --view, --resolution, --turntable) need a mesh: "
+            "--no-cross-term, --curvature-scale, --direction, --view, --resolution, --turntable) "
+            "need a mesh: "
             "give --mesh FILE");
     SurfaceSpec& spec = s.surface;
     if (!f.tileSize.empty())
@@ -107,6 +151,8 @@ void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
         spec.scaleBy =
             spec.scaleStrength > 0 ? SurfaceScaleBy::MeanCurvature : SurfaceScaleBy::None;
     }
+    if (!f.direction.empty())
+        spec.direction = parseDirection(f.direction);
     if (!f.view.empty()) {
         const std::vector<std::string> parts = splitCommas(f.view);
         if (parts.size() < 2 || parts.size() > 3)

@@ -18,6 +18,7 @@ struct SurfaceFlags {
     bool noMetricCorrection = false;
     bool noCrossTerm = false;
     std::string curvatureScale;
+    std::string direction;
     std::string view;
     std::string resolution;
     std::string turntable;

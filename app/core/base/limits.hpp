@@ -93,5 +93,8 @@ constexpr int kMaxTurntableFrames = 3600;
 constexpr double kMinViewDistance = 1.05;
 constexpr double kMaxViewDistance = 100.0;
 constexpr double kMaxSurfaceScaleStrength = 100.0;
+// A surface direction's axis and point, per coordinate (mesh units): far past
+// any model, small enough that their products stay finite in float.
+constexpr double kMaxSurfacePoint = 1e9;
 
 } // namespace morphogen

@@ -1,6 +1,7 @@
 #include "core/domain/atlas_weights.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <string>
 
@@ -12,6 +13,13 @@ namespace morphogen {
 
 void checkAtlasWeightSizes(const Atlas& atlas, const AtlasWeights& weights) {
     const std::size_t cells = atlas.cellCount();
+    if (weights.tensor)
+        for (const AtlasTensorWeights::Field& f : weights.tensor->field)
+            if (f.links.size() != cells || f.diagonals.size() != cells)
+                throw InputError("atlas weights: " + std::to_string(f.links.size()) + " and " +
+                                 std::to_string(f.diagonals.size()) +
+                                 " anisotropic link and diagonal entries for an atlas of " +
+                                 std::to_string(cells) + " cells (accepted: one per atlas cell)");
     if (weights.hasDiagonals() && weights.diagonal.size() != cells)
         throw InputError("atlas weights: " + std::to_string(weights.diagonal.size()) +
                          " diagonal entries for an atlas of " + std::to_string(cells) +
@@ -26,6 +34,22 @@ void checkAtlasWeightSizes(const Atlas& atlas, const AtlasWeights& weights) {
 
 void checkAtlasWeights(const Atlas& atlas, const AtlasWeights& weights) {
     checkAtlasWeightSizes(atlas, weights);
+    const std::vector<std::array<std::uint32_t, 8>> d =
+        weights.tensor || weights.hasDiagonals() ? atlasDiagonals(atlas)
+                                                 : std::vector<std::array<std::uint32_t, 8>>();
+    if (weights.tensor) {
+        for (const AtlasTensorWeights::Field& f : weights.tensor->field)
+            for (std::size_t i = 0; i < atlas.cellCount(); ++i)
+                for (std::size_t s = 0; s < 4; ++s) {
+                    if (!std::isfinite(f.links[i][s]) || !std::isfinite(f.diagonals[i][s]))
+                        throw InputError("atlas weights: cell " + std::to_string(i) +
+                                         " has a non-finite anisotropic weight");
+                    if (f.diagonals[i][s] != 0.0f && d[i][s] != d[i][s + 4])
+                        throw InputError("atlas weights: cell " + std::to_string(i) +
+                                         " has an anisotropic diagonal weight towards an "
+                                         "irregular tile corner (accepted there: 0)");
+                }
+    }
     const std::size_t cells = atlas.cellCount();
     const auto bad = [](float v) { return !std::isfinite(v) || v < 0.0f; };
     for (std::size_t i = 0; i < cells; ++i) {
@@ -39,11 +63,11 @@ void checkAtlasWeights(const Atlas& atlas, const AtlasWeights& weights) {
     }
     if (!weights.hasDiagonals())
         return;
-    const auto d = atlasDiagonals(atlas);
     for (std::size_t i = 0; i < cells; ++i)
         for (std::size_t s = 0; s < 4; ++s) {
             const float k = weights.diagonal[i][s];
-            if (bad(k))
+            // With anisotropy the isotropic stencil is the centred form: signed diagonals.
+            if (weights.tensor ? !std::isfinite(k) : bad(k))
                 throw InputError("atlas weights: cell " + std::to_string(i) +
                                  " has a negative or non-finite diagonal coefficient (accepted: "
                                  "finite values >= 0)");
@@ -83,6 +107,72 @@ float maxCoefficientSum(const AtlasWeights& weights) {
 int weightedSubsteps(const AtlasWeights& weights) {
     const double sum = maxCoefficientSum(weights);
     return sum > 4.0 ? int(std::ceil(sum / 4.0 - 1e-9)) : 1;
+}
+
+std::array<float, 3> tensorMix(double theta, double a1, double a2, double rate) {
+    const double radians = theta * 3.14159265358979323846 / 180.0;
+    const double mean = rate * (a1 * a1 + a2 * a2) / 2, half = rate * (a1 * a1 - a2 * a2) / 2;
+    return {float(mean), float(half * std::cos(2 * radians)), float(half * std::sin(2 * radians))};
+}
+
+double maxTensorSum(const AtlasWeights& weights, const std::array<float, 3>& mix) {
+    assert(weights.tensor);
+    const AtlasTensorWeights& t = *weights.tensor;
+    double worst = 0;
+    for (std::size_t i = 0; i < weights.coefficients.size(); ++i) {
+        double s = 0;
+        for (std::size_t d = 0; d < 4; ++d) {
+            s += std::abs(double(mix[0]) * weights.coefficients[i][d] +
+                          double(mix[1]) * t.field[0].links[i][d] +
+                          double(mix[2]) * t.field[1].links[i][d]);
+            const double iso = weights.hasDiagonals() ? weights.diagonal[i][d] : 0.0;
+            s += std::abs(double(mix[0]) * iso + double(mix[1]) * t.field[0].diagonals[i][d] +
+                          double(mix[2]) * t.field[1].diagonals[i][d]);
+        }
+        worst = std::max(worst, s);
+    }
+    return worst;
+}
+
+double maxTensorSumRatio(const AtlasWeights& weights,
+                         const std::vector<std::array<float, 3>>& mixes) {
+    double worst = 0;
+    for (const std::array<float, 3>& m : mixes)
+        if (m[0] > 0)
+            worst = std::max(worst, maxTensorSum(weights, m) / (4.0 * double(m[0])));
+    return worst;
+}
+
+int tensorSubsteps(const AtlasWeights& weights, const std::vector<std::array<float, 3>>& mixes) {
+    const double ratio = maxTensorSumRatio(weights, mixes);
+    return ratio > 1.0 ? int(std::ceil(ratio - 1e-9)) : 1;
+}
+
+std::vector<float> tensorPlanes(const AtlasTensorWeights& tensor) {
+    const std::size_t cells = tensor.field[0].links.size();
+    std::vector<float> planes(16 * cells);
+    for (std::size_t k = 0; k < 2; ++k)
+        for (std::size_t i = 0; i < cells; ++i)
+            for (std::size_t d = 0; d < 4; ++d) {
+                planes[(8 * k + d) * cells + i] = tensor.field[k].links[i][d];
+                planes[(8 * k + 4 + d) * cells + i] = tensor.field[k].diagonals[i][d];
+            }
+    return planes;
+}
+
+std::array<std::vector<float>, 4> tensorTexels(const AtlasTensorWeights& tensor) {
+    std::array<std::vector<float>, 4> texels;
+    for (std::size_t k = 0; k < 2; ++k) {
+        const auto flatten = [](const std::vector<std::array<float, 4>>& v) {
+            std::vector<float> out(4 * v.size());
+            for (std::size_t i = 0; i < v.size(); ++i)
+                std::copy(v[i].begin(), v[i].end(), out.begin() + std::ptrdiff_t(4 * i));
+            return out;
+        };
+        texels[2 * k] = flatten(tensor.field[k].links);
+        texels[2 * k + 1] = flatten(tensor.field[k].diagonals);
+    }
+    return texels;
 }
 
 std::vector<float> coefficientPlanes(const AtlasWeights& weights) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
 
 namespace morphogen {
@@ -30,13 +31,38 @@ class Atlas;
 // corner of valence != 4, see Atlas::walk), so one order's index map serves.
 // What it is for: the cross term of the Laplace-Beltrami operator on sheared
 // texels (core/surface/surface_weights.hpp).
+//
+// Optionally, for anisotropic diffusion on a surface, `tensor`: the operators
+// div(Q grad u) of two traceless tangent tensor fields (AtlasTensorWeights).
+struct AtlasTensorWeights;
 struct AtlasWeights {
     std::vector<std::array<float, 4>> coefficients; // per atlas cell; 0 for unused cells
     std::vector<float> area;                        // per atlas cell, units^2; 0 for unused cells
     // Empty (the 5-point stencil) or per atlas cell; 0 for unused cells.
     std::vector<std::array<float, 4>> diagonal;
+    std::shared_ptr<const AtlasTensorWeights> tensor; // null: isotropic only
 
     bool hasDiagonals() const { return !diagonal.empty(); }
+};
+
+// The anisotropic part of diffusion on a surface (core/surface/surface_tensor.hpp):
+// for a direction field e with f = n x e, the traceless tangent tensors
+// Q1 = e e^T - f f^T and Q2 = e f^T + f e^T (their eigenvalues +-|e|^2, |e| <= 1).
+// A Witkin-Kass tensor A = a1^2 v v^T + a2^2 w w^T with v at angle theta from e is
+//     A = (a1^2 + a2^2) / 2 P + (a1^2 - a2^2) / 2 (cos 2theta Q1 + sin 2theta Q2),
+// P the tangent plane's identity (the isotropic weights above), so every chemical
+// runs p lap + q1 L1 + q2 L2 with its own three numbers over these shared weights.
+// field[k] is L_{k+1}: its links (Direction order) and its four diagonals (slot
+// order), with the flux of each pair the same from both sides (area-weighted, as
+// AtlasWeights), so diffusion conserves sum(area u). Unlike the isotropic weights
+// they are signed: a traceless tensor has a negative direction. Every diagonal is
+// set (the centred cross derivative), 0 where a diagonal is not one texel.
+struct AtlasTensorWeights {
+    struct Field {
+        std::vector<std::array<float, 4>> links;     // per atlas cell
+        std::vector<std::array<float, 4>> diagonals; // per atlas cell
+    };
+    std::array<Field, 2> field;
 };
 
 // Throws InputError unless `weights` fits `atlas`: one entry per atlas cell in
@@ -65,6 +91,25 @@ float maxCoefficientSum(const AtlasWeights& weights);
 // / 4) when above 4 (as ceil(1 / h^2) on a grid finer than one unit), else 1.
 int weightedSubsteps(const AtlasWeights& weights);
 
+// A Witkin-Kass tensor (theta in degrees from the field's direction, a1 along,
+// a2 across) at diffusion rate `rate` as the three numbers AtlasTensorWeights
+// mixes: rate (a1^2 + a2^2) / 2, rate (a1^2 - a2^2) / 2 cos 2theta, ... sin 2theta.
+std::array<float, 3> tensorMix(double theta, double a1, double a2, double rate);
+
+// With anisotropy (weights.tensor): the largest sum over a texel of the
+// absolute values of its links and diagonals combined by `mix` (p lap + q1 L1 +
+// q2 L2): that operator's Gershgorin bound is twice this.
+double maxTensorSum(const AtlasWeights& weights, const std::array<float, 3>& mix);
+// With anisotropy (weights.tensor): for each (p, q1, q2) of `mixes` (a
+// chemical's operator p lap + q1 L1 + q2 L2, p > 0), the largest sum over a
+// texel of the absolute values of its combined links and diagonals, over 4p:
+// the step's limit relative to a unit grid diffusing at rate p (4 p the grid's
+// sum; the session's dt is chosen for its grid). The largest over `mixes`.
+double maxTensorSumRatio(const AtlasWeights& weights,
+                         const std::vector<std::array<float, 3>>& mixes);
+// The substeps for it: ceil of that ratio when above 1, else 1.
+int tensorSubsteps(const AtlasWeights& weights, const std::vector<std::array<float, 3>>& mixes);
+
 // The weights as four planes (structure of arrays, cell-major inside a plane):
 // plane d holds coefficients[i][d] at i. What the CPU kernels stream.
 std::vector<float> coefficientPlanes(const AtlasWeights& weights);
@@ -77,5 +122,10 @@ std::vector<float> coefficientTexels(const AtlasWeights& weights);
 // weights have no diagonals.
 std::vector<float> diagonalPlanes(const AtlasWeights& weights);
 std::vector<float> diagonalTexels(const AtlasWeights& weights);
+
+// The tensor weights as 16 planes: L1's four links, L1's four diagonals, then
+// L2's (as coefficientPlanes); and as four RGBA textures' texels in that order.
+std::vector<float> tensorPlanes(const AtlasTensorWeights& tensor);
+std::array<std::vector<float>, 4> tensorTexels(const AtlasTensorWeights& tensor);
 
 } // namespace morphogen

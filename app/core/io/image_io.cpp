@@ -19,6 +19,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/json_input.hpp"
 #include "core/base/limits.hpp"
+#include "core/io/exr_header_check.hpp"
 #include "core/io/output_files.hpp"
 
 namespace morphogen {
@@ -287,6 +288,7 @@ void checkImageFile(const std::string& path) {
     if (!fs::is_regular_file(path, ec))
         throw InputError(path + ": image not found");
     QuietStderr quiet;
+    checkExrAttributeSizes(path);
     auto input = OIIO::ImageInput::open(path);
     if (!input)
         throw InputError(path + ": cannot read the image (" + oneLine(OIIO::geterror()) +
@@ -304,6 +306,7 @@ std::vector<float> loadLuminance(const std::string& path, int width, int height)
     // process-wide image cache, which keeps stale entries for a file that was
     // rewritten and crashed after reading a truncated PNG.
     QuietStderr quiet;
+    checkExrAttributeSizes(path);
     auto input = OIIO::ImageInput::open(path);
     if (!input)
         throw InputError(path + ": cannot read the image (" + oneLine(OIIO::geterror()) +
@@ -350,6 +353,7 @@ RawImage readRawImage(const std::string& path) {
     if (!fs::is_regular_file(path, ec))
         throw InputError(path + ": raw state image not found");
     QuietStderr quiet;
+    checkExrAttributeSizes(path);
     auto input = OIIO::ImageInput::open(path);
     if (!input)
         throw InputError(path + ": cannot read the image (" + oneLine(OIIO::geterror()) +

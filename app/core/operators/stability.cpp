@@ -57,6 +57,21 @@ ExplicitStability gershgorinStability(const DiffusionOperator& op, const std::st
 
 } // namespace
 
+ExplicitStability tensorAtlasStability(const AtlasWeights& weights,
+                                       const std::vector<std::array<float, 3>>& mixes) {
+    double worst = 0;
+    for (const std::array<float, 3>& mix : mixes)
+        worst = std::max(worst, maxTensorSum(weights, mix));
+    ExplicitStability result;
+    const double bound = 2.0 * worst;
+    result.exact = false;
+    result.basis = "Gershgorin bound on the weighted atlas domain with anisotropy (twice the "
+                   "largest sum of a texel's combined weights over the chemicals' tensors)";
+    result.spectralRadius = std::numeric_limits<double>::quiet_NaN();
+    result.maxStableDt = bound > 0 ? 2.0 / bound : std::numeric_limits<double>::infinity();
+    return result;
+}
+
 ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& domain, double dt) {
     if (const AtlasWeights* weights = domain.atlasWeights()) {
         // The weighted 5-point Laplacian (the only operator a weighted atlas

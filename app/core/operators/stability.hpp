@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,10 @@ ExplicitStability explicitStability(const DiffusionOperator& op, int width, int 
 // bounds its weighted 5-point Laplacian the same way: |lambda| <= 2 * rate *
 // maxCoefficientSum.
 ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& domain, double dt);
+// A weighted atlas with anisotropy (AtlasWeights::tensor): Gershgorin's bound of
+// each chemical's combined operator (mixes: sessionTensorMixes at its rates).
+ExplicitStability tensorAtlasStability(const AtlasWeights& weights,
+                                       const std::vector<std::array<float, 3>>& mixes);
 
 // The semi-implicit solve (I - dt A) x = rhs by Richardson relaxation passes
 //   x' = x + omega (rhs - (I - dt A) x).

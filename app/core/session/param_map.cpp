@@ -1,12 +1,15 @@
 #include "core/session/param_map.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
 
 #include "core/base/enum_names.hpp"
+#include "core/base/errors.hpp"
 #include "core/base/json_fields.hpp"
 #include "core/base/random.hpp"
 #include "core/io/image_io.hpp"
@@ -46,7 +49,84 @@ float valueNoise(double x, double y, int cellsX, int cellsY, std::uint64_t seed)
     return float(top * (1 - sy) + bottom * sy);
 }
 
+// Value noise in space: random values on the integer lattice, smoothstep-
+// interpolated along each axis (no wrap: a surface has no period).
+double valueNoise3(double x, double y, double z, std::uint64_t seed) {
+    const double f[3] = {std::floor(x), std::floor(y), std::floor(z)};
+    const std::int64_t i0[3] = {std::int64_t(f[0]), std::int64_t(f[1]), std::int64_t(f[2])};
+    auto smooth = [](double t) { return t * t * (3 - 2 * t); };
+    const double s[3] = {smooth(x - f[0]), smooth(y - f[1]), smooth(z - f[2])};
+    auto lattice = [&](int dx, int dy, int dz) {
+        // 21 bits per axis, offset so negative coordinates stay distinct.
+        const auto bits = [](std::int64_t v) { return std::uint64_t(v + (1 << 20)) & 0x1FFFFF; };
+        return uniform01(seed, 3001,
+                         (bits(i0[2] + dz) << 42) | (bits(i0[1] + dy) << 21) | bits(i0[0] + dx));
+    };
+    double value = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+        const int dx = corner & 1, dy = (corner >> 1) & 1, dz = corner >> 2;
+        value += lattice(dx, dy, dz) * (dx ? s[0] : 1 - s[0]) * (dy ? s[1] : 1 - s[1]) *
+                 (dz ? s[2] : 1 - s[2]);
+    }
+    return value;
+}
+
 } // namespace
+
+std::vector<float> evaluateSurfaceParamMap(const ParamMapSpec& spec, const std::string& param,
+                                           const std::vector<std::array<float, 3>>& positions,
+                                           const std::vector<bool>& used, double unitsPerMesh,
+                                           std::uint64_t seed) {
+    assert(positions.size() == used.size());
+    if (spec.field == ParamMapSpec::Field::Image)
+        throw InputError("param_maps." + param +
+                         ": an image field cannot vary a parameter over a mesh (the image's x and "
+                         "y are not the surface's); accepted on a mesh: linear_x, linear_y (along "
+                         "the model's x and y), radial, noise");
+    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (std::size_t i = 0; i < positions.size(); ++i)
+        if (used[i])
+            for (int a = 0; a < 3; ++a) {
+                lo[a] = std::min(lo[a], double(positions[i][a]));
+                hi[a] = std::max(hi[a], double(positions[i][a]));
+            }
+    const std::array<double, 3> extent{std::max(hi[0] - lo[0], 1e-30),
+                                       std::max(hi[1] - lo[1], 1e-30),
+                                       std::max(hi[2] - lo[2], 1e-30)};
+    const std::array<double, 3> centre{lo[0] + spec.centreX * extent[0],
+                                       lo[1] + spec.centreY * extent[1], lo[2] + 0.5 * extent[2]};
+    const double halfDiagonal =
+        0.5 * std::sqrt(extent[0] * extent[0] + extent[1] * extent[1] + extent[2] * extent[2]);
+    const double lattice = unitsPerMesh / double(spec.scale); // noise cells per mesh unit
+    std::vector<float> values(positions.size(), spec.min);
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        if (!used[i])
+            continue;
+        const auto& p = positions[i];
+        double t = 0;
+        switch (spec.field) {
+        case ParamMapSpec::Field::LinearX:
+            t = (p[0] - lo[0]) / extent[0];
+            break;
+        case ParamMapSpec::Field::LinearY:
+            t = (p[1] - lo[1]) / extent[1];
+            break;
+        case ParamMapSpec::Field::Radial:
+            t = std::sqrt((p[0] - centre[0]) * (p[0] - centre[0]) +
+                          (p[1] - centre[1]) * (p[1] - centre[1]) +
+                          (p[2] - centre[2]) * (p[2] - centre[2])) /
+                halfDiagonal;
+            break;
+        case ParamMapSpec::Field::Noise:
+            t = valueNoise3(p[0] * lattice, p[1] * lattice, p[2] * lattice, seed);
+            break;
+        case ParamMapSpec::Field::Image:
+            break;
+        }
+        values[i] = float(spec.min + (spec.max - spec.min) * std::clamp(t, 0.0, 1.0));
+    }
+    return values;
+}
 
 std::string toString(ParamMapSpec::Field field) {
     return nameOf(kFields, field);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -36,6 +37,18 @@ std::string toString(ParamMapSpec::Field field);
 std::vector<float> evaluateParamMap(const ParamMapSpec& spec, int width, int height,
                                     std::uint64_t seed, const std::string& baseDir,
                                     double cellSize = 0);
+
+// The same on a surface (a session on a mesh): per atlas cell, the field at
+// the texel's point `positions[i]` (mesh coordinates; `used[i]` false: an
+// unused texel, given spec.min). linear_x and linear_y run across the used
+// points' bounding box along the model's x and y, radial from the box's point
+// at (centre x, centre y, middle z) over half its diagonal, noise is a 3D value
+// noise `scale` model units across (unitsPerMesh model units per mesh unit).
+// An image field has no place on a surface: InputError naming `param`.
+std::vector<float> evaluateSurfaceParamMap(const ParamMapSpec& spec, const std::string& param,
+                                           const std::vector<std::array<float, 3>>& positions,
+                                           const std::vector<bool>& used, double unitsPerMesh,
+                                           std::uint64_t seed);
 
 // Reads "param_maps" of a session: {"F": {"field": "linear_x", "range": [0.01, 0.1]}, ...};
 // values must lie in each parameter's accepted range.

@@ -35,6 +35,9 @@ public:
     // A deformed copy and what the run needs of it. Throws InputError for a
     // deformation that touches no tile or has bad numbers.
     virtual DeformedSurface deformed(const DeformSpec& spec) const = 0;
+    // Model units per mesh unit (the session's scale on this surface): what
+    // fields laid out in model units (noise param maps) scale mesh points by.
+    virtual double unitsPerMesh() const = 0;
 };
 
 struct DeformedSurface {

@@ -1,5 +1,8 @@
 #include "core/session/surface_spec.hpp"
 
+#include <cmath>
+#include <sstream>
+
 #include <nlohmann/json.hpp>
 
 #include "core/base/enum_names.hpp"
@@ -47,7 +50,64 @@ SurfaceView viewFromJson(const FieldReader& surface, const nlohmann::json& block
     return view;
 }
 
+// An [x, y, z] of finite numbers within kMaxSurfacePoint.
+std::array<double, 3> vectorField(const FieldReader& reader, const std::string& key) {
+    const nlohmann::json* v = reader.find(key);
+    std::ostringstream limit;
+    limit << kMaxSurfacePoint;
+    const std::string expected = "must be an array [x, y, z] of numbers in -" + limit.str() + ".." +
+                                 limit.str() + " (mesh units)";
+    if (!v || !v->is_array() || v->size() != 3)
+        reader.failField(key, expected);
+    std::array<double, 3> out{};
+    for (std::size_t i = 0; i < 3; ++i) {
+        if (!(*v)[i].is_number())
+            reader.failField(key, expected + ", got " + v->dump());
+        out[i] = (*v)[i].get<double>();
+        if (!(std::abs(out[i]) <= kMaxSurfacePoint))
+            reader.failField(key, expected + ", got " + v->dump());
+    }
+    return out;
+}
+
+SurfaceDirection directionFromJson(const FieldReader& surface, const nlohmann::json& block) {
+    FieldReader reader(block, surface.source(), "surface.direction");
+    reader.rejectUnknown({"along", "around", "through"});
+    SurfaceDirection d;
+    const bool along = reader.find("along") != nullptr, around = reader.find("around") != nullptr;
+    if (along == around)
+        reader.failField(along ? "around" : "along",
+                         std::string(along ? "cannot be given with \"along\"" : "is missing") +
+                             ": give one of {\"along\": [x, y, z]} (a world axis projected onto "
+                             "the surface) or {\"around\": [x, y, z], \"through\": [x, y, z]} "
+                             "(circles about an axis)");
+    d.type = along ? SurfaceDirection::Type::Along : SurfaceDirection::Type::Around;
+    const std::string key = along ? "along" : "around";
+    d.axis = vectorField(reader, key);
+    if (d.axis[0] == 0 && d.axis[1] == 0 && d.axis[2] == 0)
+        reader.failField(key, "is [0, 0, 0]: an axis needs a length");
+    if (reader.find("through")) {
+        if (along)
+            reader.failField("through", "applies to \"around\" only");
+        d.through = vectorField(reader, "through");
+    }
+    return d;
+}
+
+nlohmann::json vectorJson(const std::array<double, 3>& v) {
+    return nlohmann::json::array({v[0], v[1], v[2]});
+}
+
 } // namespace
+
+std::string toString(const SurfaceDirection& d) {
+    const auto text = [](const std::array<double, 3>& v) {
+        return nlohmann::json(vectorJson(v)).dump();
+    };
+    if (d.type == SurfaceDirection::Type::Along)
+        return "along " + text(d.axis);
+    return "around " + text(d.axis) + " through " + text(d.through);
+}
 
 std::string toString(SurfaceScaleBy by) {
     return nameOf(kScaleByNames, by);
@@ -63,8 +123,8 @@ std::string surfaceScaleByNames() {
 
 SurfaceSpec surfaceSpecFromJson(const FieldReader& top, const nlohmann::json& block) {
     FieldReader reader(block, top.source(), "surface");
-    reader.rejectUnknown(
-        {"mesh", "tile_size", "tiles", "metric_correction", "cross_term", "scale", "view"});
+    reader.rejectUnknown({"mesh", "tile_size", "tiles", "metric_correction", "cross_term", "scale",
+                          "direction", "view"});
     SurfaceSpec spec;
     spec.mesh = reader.string("mesh", "");
     if (spec.mesh.empty())
@@ -90,6 +150,8 @@ SurfaceSpec surfaceSpecFromJson(const FieldReader& top, const nlohmann::json& bl
         spec.scaleBy = s.choice("by", spec.scaleBy, parseSurfaceScaleBy, surfaceScaleByNames());
         spec.scaleStrength = s.number("strength", spec.scaleStrength, 0, kMaxSurfaceScaleStrength);
     }
+    if (const nlohmann::json* direction = reader.find("direction"))
+        spec.direction = directionFromJson(reader, *direction);
     if (const nlohmann::json* view = reader.find("view"))
         spec.view = viewFromJson(reader, *view);
     return spec;
@@ -104,6 +166,14 @@ nlohmann::json surfaceSpecToJson(const SurfaceSpec& spec) {
     j["cross_term"] = spec.crossTerm;
     if (spec.scaleBy != SurfaceScaleBy::None)
         j["scale"] = {{"by", toString(spec.scaleBy)}, {"strength", spec.scaleStrength}};
+    // The default stays unwritten: sessions written before it read back the same.
+    if (spec.direction != SurfaceDirection()) {
+        const SurfaceDirection& d = spec.direction;
+        if (d.type == SurfaceDirection::Type::Along)
+            j["direction"] = {{"along", vectorJson(d.axis)}};
+        else
+            j["direction"] = {{"around", vectorJson(d.axis)}, {"through", vectorJson(d.through)}};
+    }
     const SurfaceView& v = spec.view;
     j["view"] = {{"azimuth", v.azimuth},
                  {"elevation", v.elevation},

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -36,6 +37,25 @@ struct SurfaceView {
     }
 };
 
+// Where anisotropic diffusion's 0-degree direction points on a surface: a
+// Witkin-Kass tensor's theta turns from it, counter-clockwise about the outward
+// normal. Along: a world axis projected onto the tangent plane (meridians of a
+// sphere for the y axis). Around: circles about an axis through a point
+// (latitude lines, a torus's rings). Where the direction is undefined (the axis
+// along the normal, a point on the axis) the anisotropy fades to isotropic over
+// a neighbourhood (core/surface/surface_tensor.hpp).
+struct SurfaceDirection {
+    enum class Type { Along, Around };
+    Type type = Type::Along;
+    std::array<double, 3> axis{0.0, 1.0, 0.0};    // mesh units; any length but 0
+    std::array<double, 3> through{0.0, 0.0, 0.0}; // Around: a point on the axis (mesh units)
+
+    bool operator==(const SurfaceDirection& o) const {
+        return type == o.type && axis == o.axis && (type == Type::Along || through == o.through);
+    }
+    bool operator!=(const SurfaceDirection& o) const { return !(*this == o); }
+};
+
 // A session's "surface" block: grow the pattern on a triangle mesh (issue 11:
 // surface tiles after Lo et al.) instead of a flat canvas. Its length is then
 // the square root of the model's area in model units: the surface holds as
@@ -51,6 +71,8 @@ struct SurfaceSpec {
     bool crossTerm = true;
     SurfaceScaleBy scaleBy = SurfaceScaleBy::None;
     double scaleStrength = 1.0;
+    // Anisotropic diffusion only (a "diffusion" of type anisotropic).
+    SurfaceDirection direction;
     SurfaceView view;
 
     bool active() const { return !mesh.empty(); }
@@ -58,6 +80,9 @@ struct SurfaceSpec {
 
 // The "sample:" prefix of SurfaceSpec::mesh.
 constexpr std::string_view kSampleMeshPrefix = "sample:";
+
+// "along" or "around" and an axis, as the JSON and --direction write them.
+std::string toString(const SurfaceDirection& direction);
 
 // The "surface" block; errors name `top`'s source and the field.
 SurfaceSpec surfaceSpecFromJson(const FieldReader& top, const nlohmann::json& block);

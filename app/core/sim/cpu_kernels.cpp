@@ -279,17 +279,16 @@ MORPHOGEN_VECTOR_CLONES void stepRows(const StepConstants& k, const State& in, S
     }
 }
 
-// Explicit Euler on rows [y0, y1) of a weighted atlas (StepConstants::
-// weightPlanes): stepRows with the weighted 5-point term, the four
-// coefficients streamed unit-stride from their planes. Columns 0 and w-1 and
-// the texture's outer rows hold only tile-border or unused texels, which the
-// caller redoes or restores, so the loop runs over columns 1..w-2 with the
-// rows above and below clamped. Cross: the weights' diagonals too
-// (StepConstants::diagonalPlanes), an interior texel's diagonals being the
-// grid's.
+// Explicit Euler on rows [y0, y1), columns [x0, x1), of a weighted atlas
+// (StepConstants::weightPlanes): stepRows with the weighted 5-point term, the
+// four coefficients streamed unit-stride from their planes. It runs on the
+// tiles padded by their halos (PaddedAtlasStep), so every read is inside the
+// texture (columns 0 and w-1 and the outer rows are halo, never stepped).
+// Cross: the weights' diagonals too (StepConstants::diagonalPlanes), a
+// texel's diagonals being the padded grid's.
 template <class Cell, bool Cross>
 MORPHOGEN_VECTOR_CLONES void stepRowsWeighted(const StepConstants& k, const State& in, State& out,
-                                              int y0, int y1) {
+                                              int y0, int y1, int x0, int x1) {
     constexpr int n = Cell::kChemicals;
     const int w = in.width(), h = in.height();
     const std::size_t cells = in.cellCount();
@@ -361,7 +360,7 @@ MORPHOGEN_VECTOR_CLONES void stepRowsWeighted(const StepConstants& k, const Stat
             }
         };
 #pragma omp simd
-        for (int x = 1; x < w - 1; ++x)
+        for (int x = x0; x < x1; ++x)
             texel(x);
     }
 }
@@ -446,8 +445,9 @@ MORPHOGEN_VECTOR_CLONES void relaxRows(const StepConstants& k, const State& x, c
 template <class T> struct Tag { using Type = T; };
 
 // Calls pick(Tag<Model::Cell>) for the built-in model `model` is; null for others.
-template <class Pick> StepRowsKernel withCell(const ReactionModel& model, const Pick& pick) {
-    StepRowsKernel kernel = nullptr;
+template <class Kernel = StepRowsKernel, class Pick>
+Kernel withCell(const ReactionModel& model, const Pick& pick) {
+    Kernel kernel = nullptr;
     visitBuiltinModel(model, [&](const auto& builtin) {
         using Model = std::decay_t<decltype(builtin)>;
         kernel = pick(Tag<typename Model::Cell>());
@@ -502,28 +502,14 @@ KernelTaps kernelTaps(const DiffusionOperator& op, int chemical) {
 }
 
 StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants& k) {
-    // On an atlas the kernel steps the texture as a clamped grid, right for
-    // every interior texel; the caller redoes the border texels (see
-    // CpuSimulator::redoAtlasBorder).
+    // On an unweighted atlas the kernel steps the texture as a clamped grid,
+    // right for every interior texel; the caller redoes the border texels
+    // (CpuSimulator::redoAtlasBorder). A weighted one's runs on halo-padded
+    // tiles (PaddedAtlasStep).
     if (!fusedParamsOk(k))
         return nullptr;
-    if (k.weighted()) {
-        // fromSession leaves only the 5-point form on a weighted atlas.
-        if (k.op.form != DiffusionOperator::Form::Laplacian5)
-            return nullptr;
-        return withCell(model, [&](auto tag) -> StepRowsKernel {
-            using Cell = typename decltype(tag)::Type;
-            if constexpr (Cell::kChemicals > kMaxFusedChemicals) {
-                return nullptr;
-            } else {
-                for (int c = 0; c < Cell::kChemicals; ++c)
-                    if ((k.op.rates[std::size_t(c)] == 0.0f) == Cell::diffuses(c))
-                        return nullptr;
-                return k.crossWeighted() ? &stepRowsWeighted<Cell, true>
-                                         : &stepRowsWeighted<Cell, false>;
-            }
-        });
-    }
+    if (k.weighted())
+        return nullptr; // fusedWeightedStep
     const bool folded = foldsKernels(k.op);
     return withCell(model, [&](auto tag) -> StepRowsKernel {
         using Cell = typename decltype(tag)::Type;
@@ -542,6 +528,26 @@ StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants
             break;
         }
         return nullptr;
+    });
+}
+
+StepTileKernel fusedWeightedStep(const ReactionModel& model, const StepConstants& k) {
+    // fromSession leaves only the 5-point form on a weighted atlas.
+    // Anisotropy's three operators per chemical go the generic path.
+    if (!k.weighted() || k.tensorWeighted() || !fusedParamsOk(k) ||
+        k.op.form != DiffusionOperator::Form::Laplacian5)
+        return nullptr;
+    return withCell<StepTileKernel>(model, [&](auto tag) -> StepTileKernel {
+        using Cell = typename decltype(tag)::Type;
+        if constexpr (Cell::kChemicals > kMaxFusedChemicals) {
+            return nullptr;
+        } else {
+            for (int c = 0; c < Cell::kChemicals; ++c)
+                if ((k.op.rates[std::size_t(c)] == 0.0f) == Cell::diffuses(c))
+                    return nullptr;
+            return k.crossWeighted() ? &stepRowsWeighted<Cell, true>
+                                     : &stepRowsWeighted<Cell, false>;
+        }
     });
 }
 

@@ -51,7 +51,16 @@ using RelaxRowsKernel = void (*)(const StepConstants& k, const State& x, const S
 // term is then exactly 0.
 // On an atlas domain the kernel treats the texture as a clamped grid: right
 // for interior texels only, so the caller must redo the tile-border texels.
+// Null on a weighted atlas: see fusedWeightedStep.
 StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants& k);
+
+// Steps rows [y0, y1), columns [x0, x1) of in into out.
+using StepTileKernel = void (*)(const StepConstants& k, const State& in, State& out, int y0, int y1,
+                                int x0, int x1);
+// Explicit Euler on a weighted atlas whose tiles are padded by halos
+// (PaddedAtlasStep), with the weights' planes laid out as the padded texture.
+// Null where fusedExplicitStep would be null on a grid, and for other domains.
+StepTileKernel fusedWeightedStep(const ReactionModel& model, const StepConstants& k);
 
 // Semi-implicit right-hand side: out = c + dt react(c). Null for other models,
 // more than four chemicals and per-cell parameters.

@@ -2,10 +2,6 @@
 
 #include "core/base/errors.hpp"
 
-#if defined(__SSE2__)
-#include <xmmintrin.h>
-#endif
-
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -18,14 +14,7 @@
 #include "core/domain/atlas_diagonals.hpp"
 #include "core/operators/stability.hpp"
 #include "core/sim/cpu_kernels.hpp"
-
-// As MORPHOGEN_VECTOR_CLONES in cpu_kernels.cpp: an AVX2 copy (gathers) beside
-// the baseline one, no FMA contraction.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define MORPHOGEN_BORDER_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define MORPHOGEN_BORDER_CLONES
-#endif
+#include "core/sim/flush_denormals.hpp"
 
 namespace morphogen {
 
@@ -36,26 +25,6 @@ namespace {
 bool threaded(const State& state) {
     return state.cellCount() >= 65536;
 }
-
-// Denormals: Gray-Scott's background v decays through the denormal range,
-// where every arithmetic op is ~100x slower on x86 (a quarter of the cells at
-// 1024^2; flushing measured 1300 -> 2000 it/s there). Flushing them to zero
-// changes values below 1e-38 only. MXCSR is per thread, so each parallel
-// region sets it for its own threads.
-class FlushDenormals {
-public:
-#if defined(__SSE2__)
-    FlushDenormals() : m_saved(_mm_getcsr()) {
-        _mm_setcsr(m_saved | 0x8040u);
-    }
-    ~FlushDenormals() {
-        _mm_setcsr(m_saved);
-    }
-
-private:
-    unsigned m_saved;
-#endif
-};
 
 // Runs band(y0, y1) on one contiguous band of rows per thread, as
 // schedule(static) would split them, with one kernel call per band rather
@@ -194,6 +163,37 @@ void tensorMapRow(const DiffusionOperator& op, int c, const float* plane, int w,
     }
 }
 
+// A weighted atlas row's interior texels (StepConstants::weightPlanes' sum and
+// order): links the four link planes, diagonals the four diagonal planes or
+// null; up, row, down the rows around y (start = y * w). Texels 0 and w - 1
+// get 0 (border or unused: replaced or restored by the caller).
+void weightedRow(const float* links, const float* diagonals, std::size_t cells, std::size_t start,
+                 const float* up, const float* row, const float* down, int w, float* out) {
+    const float *cpx = links + start, *cpy = links + cells + start;
+    const float *cmx = links + 2 * cells + start, *cmy = links + 3 * cells + start;
+    out[0] = out[w - 1] = 0.0f;
+    if (diagonals) {
+        const float* k = diagonals + start;
+        const float *kmm = k, *kpm = k + cells, *kmp = k + 2 * cells, *kpp = k + 3 * cells;
+#pragma omp simd
+        for (int x = 1; x < w - 1; ++x) {
+            const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
+            const float sum = (((a + b) + d) + e) + ((kmm[x] + kpm[x]) + (kmp[x] + kpp[x]));
+            const float sides = (((a * row[x - 1] + b * row[x + 1]) + d * up[x]) + e * down[x]) +
+                                ((kmm[x] * up[x - 1] + kpm[x] * up[x + 1]) +
+                                 (kmp[x] * down[x - 1] + kpp[x] * down[x + 1]));
+            out[x] = sides - sum * row[x];
+        }
+    } else {
+#pragma omp simd
+        for (int x = 1; x < w - 1; ++x) {
+            const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
+            const float sum = ((a + b) + d) + e;
+            out[x] = ((a * row[x - 1] + b * row[x + 1]) + d * up[x]) + e * down[x] - sum * row[x];
+        }
+    }
+}
+
 } // namespace
 
 CpuSimulator::CpuSimulator(const Session& session)
@@ -209,10 +209,9 @@ CpuSimulator::CpuSimulator(const Session& session)
             m_borderRows.push_back(
                 std::size_t(std::lower_bound(border.begin(), border.end(), atlas->cellAt(0, y)) -
                             border.begin()));
-        if (m_k.op.form == DiffusionOperator::Form::Laplacian9 || m_k.crossWeighted())
+        if (m_k.op.form == DiffusionOperator::Form::Laplacian9 || m_k.crossWeighted() ||
+            m_k.tensorWeighted())
             m_diagonals = atlasDiagonals(*atlas);
-        if (m_k.weighted())
-            packBorderStencils();
     }
     pickKernels();
 }
@@ -240,6 +239,14 @@ std::optional<std::string> CpuSimulator::insaneValue(const ReactionModel& model)
 void CpuSimulator::run(int steps) {
     if (runTilesApart(steps))
         return;
+    if (m_padded) {
+        m_nextMatches = false;
+        const std::size_t n = std::size_t(m_k.domain.atlasMap()->tileSize());
+        const bool many =
+            m_activeTiles.empty() ? threaded(m_current) : m_activeTiles.size() * n * n >= 65536;
+        m_padded->run(m_weightedStep, m_k, m_current, steps, m_activeTiles, m_frozenCells, many);
+        return;
+    }
     // Made on the first step, not with the simulator: while a run is being
     // set up, its initial state and m_current are the two copies held.
     if (m_next.cellCount() != m_current.cellCount())
@@ -269,7 +276,8 @@ void CpuSimulator::restoreFrozen() {
     }
 }
 
-void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil, float* out) const {
+void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil, int chemical,
+                                     float* out) const {
     const Atlas& atlas = *m_k.domain.atlasMap();
     const int w = atlas.width(), h = atlas.height();
     // Every texel on the texture's outer ring is a border or unused texel, so
@@ -278,64 +286,73 @@ void CpuSimulator::atlasLaplacianRow(const float* plane, int y, Stencil stencil,
     const float* row = plane + std::size_t(y) * w;
     const float* down =
         plane + std::size_t(GridDomain::wrapOrClamp(y + 1, h, EdgeMode::Clamped)) * w;
-    if (m_k.weighted()) {
-        // The fused kernel's weighted sum (stepRowsWeighted), for the generic path.
-        const std::size_t cells = atlas.cellCount(), start = std::size_t(y) * w;
-        const float* planes = m_k.weightPlanes->data();
-        const float *cpx = planes + start, *cpy = planes + cells + start;
-        const float *cmx = planes + 2 * cells + start, *cmy = planes + 3 * cells + start;
-        out[0] = out[w - 1] = 0.0f; // border or unused: replaced below, or restored
-        if (m_k.crossWeighted()) {
-            const float* k = m_k.diagonalPlanes->data() + start;
-            const float *kmm = k, *kpm = k + cells, *kmp = k + 2 * cells, *kpp = k + 3 * cells;
+    const std::size_t cells = atlas.cellCount(), start = std::size_t(y) * w;
+    if (m_k.tensorWeighted()) {
+        // p S + q1 L1 + q2 L2 (StepConstants::tensorPlanes), each summed as S is.
+        const std::array<float, 3>& mix = m_k.tensorMixes[std::size_t(chemical)];
+        std::vector<float> part(static_cast<std::size_t>(w));
+        weightedRow(m_k.weightPlanes->data(),
+                    m_k.crossWeighted() ? m_k.diagonalPlanes->data() : nullptr, cells, start, up,
+                    row, down, w, out);
+        for (int x = 0; x < w; ++x)
+            out[x] *= mix[0];
+        for (std::size_t q = 0; q < 2; ++q) {
+            const float* t = m_k.tensorPlanes->data() + 8 * q * cells;
+            weightedRow(t, t + 4 * cells, cells, start, up, row, down, w, part.data());
+            const float m = mix[q + 1];
 #pragma omp simd
-            for (int x = 1; x < w - 1; ++x) {
-                const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
-                const float sum = (((a + b) + d) + e) + ((kmm[x] + kpm[x]) + (kmp[x] + kpp[x]));
-                const float sides =
-                    (((a * row[x - 1] + b * row[x + 1]) + d * up[x]) + e * down[x]) +
-                    ((kmm[x] * up[x - 1] + kpm[x] * up[x + 1]) +
-                     (kmp[x] * down[x - 1] + kpp[x] * down[x + 1]));
-                out[x] = sides - sum * row[x];
-            }
-        } else {
-#pragma omp simd
-            for (int x = 1; x < w - 1; ++x) {
-                const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
-                const float sum = ((a + b) + d) + e;
-                out[x] =
-                    ((a * row[x - 1] + b * row[x + 1]) + d * up[x]) + e * down[x] - sum * row[x];
-            }
+            for (int x = 0; x < w; ++x)
+                out[x] += m * part[std::size_t(x)];
         }
+    } else if (m_k.weighted()) {
+        // The fused kernel's weighted sum (stepRowsWeighted), for the generic path.
+        weightedRow(m_k.weightPlanes->data(),
+                    m_k.crossWeighted() ? m_k.diagonalPlanes->data() : nullptr, cells, start, up,
+                    row, down, w, out);
     } else {
         laplacianRow(up, row, down, out, w, EdgeMode::Clamped, stencil);
     }
     const std::vector<std::uint32_t>& border = atlas.borderCells();
-    const std::size_t rowStart = std::size_t(y) * w;
     for (std::size_t b = m_borderRows[std::size_t(y)]; b < m_borderRows[std::size_t(y) + 1]; ++b)
-        out[border[b] - rowStart] = atlasLaplacian(plane, border[b], stencil);
+        out[border[b] - start] = atlasLaplacian(plane, border[b], stencil, chemical);
 }
 
-float CpuSimulator::atlasLaplacian(const float* plane, std::uint32_t cell, Stencil stencil) const {
+float CpuSimulator::weightedAt(const float* links, const float* diagonals, const float* plane,
+                               std::uint32_t cell) const {
+    // StepConstants::weightPlanes' order; the interior loop's.
     const std::array<std::uint32_t, 4>& n = m_k.domain.atlasMap()->neighbours()[cell];
-    if (m_k.weighted()) {
-        // StepConstants::weightPlanes' order; the interior loop's.
-        const std::size_t cells = m_current.cellCount();
-        const float* planes = m_k.weightPlanes->data();
-        const float b = planes[cell], e = planes[cells + cell];
-        const float a = planes[2 * cells + cell], d = planes[3 * cells + cell];
-        float sum = ((a + b) + d) + e;
-        float sides = ((a * plane[n[2]] + b * plane[n[0]]) + d * plane[n[3]]) + e * plane[n[1]];
-        if (m_k.crossWeighted()) {
-            // Non-zero only where both orders reach one texel: order 0 serves.
-            const float* k = m_k.diagonalPlanes->data() + cell;
-            const std::array<std::uint32_t, 8>& g = m_diagonals[cell];
-            const float k0 = k[0], k1 = k[cells], k2 = k[2 * cells], k3 = k[3 * cells];
-            sum += (k0 + k1) + (k2 + k3);
-            sides += (k0 * plane[g[0]] + k1 * plane[g[1]]) + (k2 * plane[g[2]] + k3 * plane[g[3]]);
-        }
-        return sides - sum * plane[cell];
+    const std::size_t cells = m_current.cellCount();
+    const float b = links[cell], e = links[cells + cell];
+    const float a = links[2 * cells + cell], d = links[3 * cells + cell];
+    float sum = ((a + b) + d) + e;
+    float sides = ((a * plane[n[2]] + b * plane[n[0]]) + d * plane[n[3]]) + e * plane[n[1]];
+    if (diagonals) {
+        // Non-zero only where both orders reach one texel: order 0 serves.
+        const float* k = diagonals + cell;
+        const std::array<std::uint32_t, 8>& g = m_diagonals[cell];
+        const float k0 = k[0], k1 = k[cells], k2 = k[2 * cells], k3 = k[3 * cells];
+        sum += (k0 + k1) + (k2 + k3);
+        sides += (k0 * plane[g[0]] + k1 * plane[g[1]]) + (k2 * plane[g[2]] + k3 * plane[g[3]]);
     }
+    return sides - sum * plane[cell];
+}
+
+float CpuSimulator::atlasLaplacian(const float* plane, std::uint32_t cell, Stencil stencil,
+                                   int chemical) const {
+    if (m_k.tensorWeighted()) {
+        const std::array<float, 3>& mix = m_k.tensorMixes[std::size_t(chemical)];
+        const std::size_t cells = m_current.cellCount();
+        const float* t = m_k.tensorPlanes->data();
+        return mix[0] * weightedAt(m_k.weightPlanes->data(),
+                                   m_k.crossWeighted() ? m_k.diagonalPlanes->data() : nullptr,
+                                   plane, cell) +
+               mix[1] * weightedAt(t, t + 4 * cells, plane, cell) +
+               mix[2] * weightedAt(t + 8 * cells, t + 12 * cells, plane, cell);
+    }
+    if (m_k.weighted())
+        return weightedAt(m_k.weightPlanes->data(),
+                          m_k.crossWeighted() ? m_k.diagonalPlanes->data() : nullptr, plane, cell);
+    const std::array<std::uint32_t, 4>& n = m_k.domain.atlasMap()->neighbours()[cell];
     // The interior loop's order: -x, +x, then the two vertical neighbours.
     const float sides = plane[n[2]] + plane[n[0]] + plane[n[3]] + plane[n[1]];
     if (stencil == Stencil::FivePoint)
@@ -348,78 +365,18 @@ float CpuSimulator::atlasLaplacian(const float* plane, std::uint32_t cell, Stenc
     return (4.0f * sides + corners - 20.0f * plane[cell]) * (1.0f / 6.0f);
 }
 
-void CpuSimulator::packBorderStencils() {
-    const Atlas& atlas = *m_k.domain.atlasMap();
-    const std::vector<std::uint32_t>& border = atlas.borderCells();
-    const std::size_t count = border.size(), cells = atlas.cellCount();
-    const int taps = m_k.crossWeighted() ? 8 : 4;
-    BorderStencils& s = m_borderStencils;
-    s.taps = taps;
-    s.index.resize(std::size_t(taps) * count);
-    s.weight.resize(std::size_t(taps) * count);
-    s.centre.resize(count);
-    const float* planes = m_k.weightPlanes->data();
-    const auto& n = atlas.neighbours();
-    // atlasLaplacian's order: -x, +x, -y, +y (planes 2, 0, 3, 1), then the diagonals.
-    constexpr int kLinks[4] = {2, 0, 3, 1};
-    for (std::size_t b = 0; b < count; ++b) {
-        const std::uint32_t cell = border[b];
-        for (int t = 0; t < 4; ++t) {
-            s.index[std::size_t(t) * count + b] = n[cell][std::size_t(kLinks[t])];
-            s.weight[std::size_t(t) * count + b] = planes[std::size_t(kLinks[t]) * cells + cell];
-        }
-        const float* w = &s.weight[b];
-        float sum = ((w[0] + w[count]) + w[2 * count]) + w[3 * count];
-        if (taps == 8) {
-            const float* k = m_k.diagonalPlanes->data() + cell;
-            for (int t = 0; t < 4; ++t) {
-                // Non-zero only where both orders reach one texel: order 0 serves.
-                s.index[std::size_t(4 + t) * count + b] = m_diagonals[cell][std::size_t(t)];
-                s.weight[std::size_t(4 + t) * count + b] = k[std::size_t(t) * cells];
-            }
-            sum += (w[4 * count] + w[5 * count]) + (w[6 * count] + w[7 * count]);
-        }
-        s.centre[b] = sum;
-    }
+float CpuSimulator::atlasTerm(const float* plane, std::uint32_t cell, Stencil stencil,
+                              int chemical) const {
+    const float d = m_k.op.rates[std::size_t(chemical)];
+    if (d == 0.0f)
+        return 0.0f;
+    const float lap = atlasLaplacian(plane, cell, stencil, chemical);
+    return m_k.tensorWeighted() ? lap : d * lap;
 }
-
-namespace {
-
-// The weighted Laplacian of border texels [b0, b0 + n) from their packed
-// stencils (CpuSimulator::BorderStencils), in atlasLaplacian's order so both
-// give the same bits; self holds the texels' own values. Gathers: built for
-// AVX2 too, as the fused kernels are (cpu_kernels.cpp).
-MORPHOGEN_BORDER_CLONES void borderLaplacians(const float* plane, const std::uint32_t* index,
-                                              const float* weight, const float* centre,
-                                              std::size_t count, int taps, std::size_t b0,
-                                              std::size_t n, const float* self, float* out) {
-    const std::uint32_t *i0 = index + b0, *i1 = i0 + count, *i2 = i1 + count, *i3 = i2 + count;
-    const float *w0 = weight + b0, *w1 = w0 + count, *w2 = w1 + count, *w3 = w2 + count;
-    const float* c = centre + b0;
-    if (taps == 4) {
-#pragma omp simd
-        for (std::size_t i = 0; i < n; ++i)
-            out[i] = (((w0[i] * plane[i0[i]] + w1[i] * plane[i1[i]]) + w2[i] * plane[i2[i]]) +
-                      w3[i] * plane[i3[i]]) -
-                     c[i] * self[i];
-        return;
-    }
-    const std::uint32_t *i4 = i3 + count, *i5 = i4 + count, *i6 = i5 + count, *i7 = i6 + count;
-    const float *w4 = w3 + count, *w5 = w4 + count, *w6 = w5 + count, *w7 = w6 + count;
-#pragma omp simd
-    for (std::size_t i = 0; i < n; ++i) {
-        const float sides =
-            (((w0[i] * plane[i0[i]] + w1[i] * plane[i1[i]]) + w2[i] * plane[i2[i]]) +
-             w3[i] * plane[i3[i]]) +
-            ((w4[i] * plane[i4[i]] + w5[i] * plane[i5[i]]) +
-             (w6[i] * plane[i6[i]] + w7[i] * plane[i7[i]]));
-        out[i] = sides - c[i] * self[i];
-    }
-}
-
-} // namespace
 
 void CpuSimulator::redoAtlasBorder() {
+    // A weighted atlas's fused steps run through PaddedAtlasStep.
+    assert(!m_k.weighted());
     const Stencil stencil = m_k.op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
                                                                                : Stencil::NinePoint;
     const int nc = m_k.chemicals;
@@ -432,7 +389,6 @@ void CpuSimulator::redoAtlasBorder() {
         const FlushDenormals flush;
         constexpr std::size_t kBlock = 256;
         std::vector<float> scratch(kBlock * 2 * std::size_t(nc));
-        std::vector<float> lap(kBlock);
         RowView view;
         for (int c = 0; c < nc; ++c) {
             view.c[c] = scratch.data() + std::size_t(c) * kBlock;
@@ -449,19 +405,10 @@ void CpuSimulator::redoAtlasBorder() {
             }
             m_model.react(view, m_k.params.data());
             for (int c = 0; c < nc; ++c) {
-                const float d = m_k.op.rates[std::size_t(c)];
                 const float* plane = m_current.plane(c);
-                const BorderStencils& packed = m_borderStencils;
-                if (packed.taps > 0 && d != 0.0f)
-                    borderLaplacians(plane, packed.index.data(), packed.weight.data(),
-                                     packed.centre.data(), border.size(), packed.taps, b0, count,
-                                     view.c[c], lap.data());
                 for (std::size_t i = 0; i < count; ++i) {
                     const std::uint32_t cell = border[b0 + i];
-                    const float term =
-                        d == 0.0f
-                            ? 0.0f
-                            : d * (packed.taps > 0 ? lap[i] : atlasLaplacian(plane, cell, stencil));
+                    const float term = atlasTerm(plane, cell, stencil, c);
                     m_next.plane(c)[cell] = std::min(
                         std::max(view.c[c][i] + dt * (view.dcdt[c][i] + term), m_k.clampMin[c]),
                         m_k.clampMax[c]);
@@ -471,14 +418,14 @@ void CpuSimulator::redoAtlasBorder() {
     }
 }
 
-void CpuSimulator::reactRow(RowView& view, int y, std::vector<float>& params) const {
+void CpuSimulator::reactCells(RowView& view, std::size_t first, std::vector<float>& params) const {
     if (!m_k.hasParamMaps()) {
         m_model.react(view, m_k.params.data());
         return;
     }
     // One cell at a time with that cell's parameters: slower, but param maps
     // are for maps and sweeps, not for speed.
-    const std::size_t row = std::size_t(y) * std::size_t(view.n);
+    const std::size_t row = first;
     RowView cell;
     cell.n = 1;
     for (int x = 0; x < view.n; ++x) {
@@ -515,6 +462,7 @@ void CpuSimulator::stepActiveTiles() {
     {
         const FlushDenormals flush;
         std::vector<float> scratch(std::size_t(n) * std::size_t(nc));
+        std::vector<float> params = m_k.params;
         RowView view;
         view.n = n;
         for (int c = 0; c < nc; ++c)
@@ -526,16 +474,17 @@ void CpuSimulator::stepActiveTiles() {
                 const std::uint32_t start = atlas.tileCell(tile, 0, v);
                 for (int c = 0; c < nc; ++c)
                     view.c[c] = m_current.plane(c) + start;
-                m_model.react(view, m_k.params.data());
+                reactCells(view, start, params);
                 for (int c = 0; c < nc; ++c) {
-                    const float d = m_k.op.rates[std::size_t(c)];
                     const float* plane = m_current.plane(c);
                     float* out = m_next.plane(c);
                     const float lo = m_k.clampMin[c], hi = m_k.clampMax[c];
+                    const int mapped = m_k.mappedRate[std::size_t(c)];
                     for (int u = 0; u < n; ++u) {
                         const std::uint32_t cell = start + std::uint32_t(u);
-                        const float term =
-                            d == 0.0f ? 0.0f : d * atlasLaplacian(plane, cell, stencil);
+                        // A mapped rate: the operator was compiled at rate 1.
+                        const float term = atlasTerm(plane, cell, stencil, c) *
+                                           (mapped >= 0 ? m_k.paramMaps.plane(mapped)[cell] : 1.0f);
                         out[cell] =
                             std::min(std::max(plane[cell] + dt * (view.dcdt[c][u] + term), lo), hi);
                     }
@@ -590,7 +539,9 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
             atlasLaplacianRow(plane, y,
                               op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
                                                                              : Stencil::NinePoint,
-                              out);
+                              c, out);
+            if (m_k.tensorWeighted())
+                return; // the chemical's mix holds its rate
 #pragma omp simd
             for (int x = 0; x < w; ++x)
                 out[x] = d * out[x];
@@ -652,7 +603,7 @@ void CpuSimulator::stepGeneric() {
                         term[c][x] = rate[x] * term[c][x];
                 }
             }
-            reactRow(view, y, params);
+            reactCells(view, std::size_t(y) * std::size_t(w), params);
             for (int c = 0; c < nc; ++c) {
                 const float* cur = view.c[c];
                 const float* r = view.dcdt[c];
@@ -705,7 +656,7 @@ void CpuSimulator::rhsGeneric() {
         for (int y = 0; y < h; ++y) {
             for (int c = 0; c < nc; ++c)
                 view.c[c] = m_current.plane(c) + std::size_t(y) * w;
-            reactRow(view, y, params);
+            reactCells(view, std::size_t(y) * std::size_t(w), params);
             for (int c = 0; c < nc; ++c) {
                 float* rhs = m_rhs.plane(c) + std::size_t(y) * w;
 #pragma omp simd
@@ -740,6 +691,13 @@ void CpuSimulator::pickKernels() {
     m_explicitStep = fusedExplicitStep(m_model, m_k);
     m_rhsPass = fusedRhsPass(m_model, m_k);
     m_relax = fusedRelaxation(m_k);
+    m_weightedStep = fusedWeightedStep(m_model, m_k);
+    if (m_weightedStep != nullptr) {
+        if (!m_padded)
+            m_padded = std::make_unique<PaddedAtlasStep>(*m_k.domain.atlasMap(), m_diagonals, m_k);
+    } else {
+        m_padded.reset();
+    }
     // The generic path's taps follow the kernels, which live rate changes rescale.
     if (m_k.op.form == DiffusionOperator::Form::Kernel3 ||
         m_k.op.form == DiffusionOperator::Form::Kernel5)

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "core/sim/cpu_kernels.hpp"
+#include "core/sim/cpu_padded_atlas.hpp"
 #include "core/sim/simulator.hpp"
 
 namespace morphogen {
@@ -37,9 +38,10 @@ private:
     void stepGeneric();
     void stepSemiImplicit();
     void rhsGeneric(); // m_rhs = c + dt f(c) through ReactionModel::react()
-    // dc/dt of the reaction for one row into view.dcdt; per cell when
-    // parameters vary per cell (param maps), else one call for the row.
-    void reactRow(RowView& view, int y, std::vector<float>& params) const;
+    // react() on view.n cells from cell `first` (a row of the texture, or a
+    // tile's row of an atlas) into view.dcdt: one call, or per cell with its
+    // own parameters under param maps.
+    void reactCells(RowView& view, std::size_t first, std::vector<float>& params) const;
     // Localized runs: one explicit step of the active tiles' texels only,
     // through the index array, the others left as they are in both buffers.
     void stepActiveTiles();
@@ -71,6 +73,7 @@ private:
     const ReactionModel& m_model;
     // Null where the generic path runs.
     StepRowsKernel m_explicitStep = nullptr;
+    StepTileKernel m_weightedStep = nullptr; // run through m_padded
     StepRowsKernel m_rhsPass = nullptr;
     RelaxRowsKernel m_relax = nullptr;
     StepConstants m_k;
@@ -88,29 +91,28 @@ private:
     std::vector<std::size_t> m_borderRows;
     // 9-point on an atlas: per cell its diagonals in both orders (atlas_diagonals.hpp).
     std::vector<std::array<std::uint32_t, 8>> m_diagonals;
-    // Weighted atlases: the border texels' stencils in borderCells() order, as
-    // planes (tap t of border texel b at t * count + b; taps -x, +x, -y, +y,
-    // then with diagonals the four of AtlasWeights::diagonal), and each texel's
-    // centre sum: redoAtlasBorder reads them unit-stride instead of the index
-    // array, four or eight coefficient planes and the diagonals per texel.
-    struct BorderStencils {
-        int taps = 0; // 0: none (an unweighted atlas), 4 or 8
-        std::vector<std::uint32_t> index;
-        std::vector<float> weight;
-        std::vector<float> centre;
-    };
-    BorderStencils m_borderStencils;
+    // Weighted atlases on a fused kernel: every step, global or of active
+    // tiles, through halo-padded tiles.
+    std::unique_ptr<PaddedAtlasStep> m_padded;
     // The 5- or 9-point Laplacian of one atlas row: interior texels by +-1 /
     // +-width in one vectorised loop, then the row's border texels by the
     // index array (and the diagonals).
-    void atlasLaplacianRow(const float* plane, int y, Stencil stencil, float* out) const;
-    // The Laplacian (rate 1) at one atlas texel through the index array.
-    float atlasLaplacian(const float* plane, std::uint32_t cell, Stencil stencil) const;
-    // After a fused step over an atlas texture (a clamped grid to the kernel):
-    // the explicit step of every tile-border texel again, through the map.
+    // With anisotropy (StepConstants::tensorWeighted) chemical's whole term, its
+    // mix's rate included; otherwise at rate 1.
+    void atlasLaplacianRow(const float* plane, int y, Stencil stencil, int chemical,
+                           float* out) const;
+    // The same at one atlas texel through the index array.
+    float atlasLaplacian(const float* plane, std::uint32_t cell, Stencil stencil,
+                         int chemical) const;
+    // A weighted sum (four link planes, four diagonal planes or null) at one texel.
+    float weightedAt(const float* links, const float* diagonals, const float* plane,
+                     std::uint32_t cell) const;
+    // Chemical's diffusion term at one texel, its rate included (0 if it does not diffuse).
+    float atlasTerm(const float* plane, std::uint32_t cell, Stencil stencil, int chemical) const;
+    // After a fused step over an unweighted atlas texture (a clamped grid to
+    // the kernel): the explicit step of every tile-border texel again,
+    // through the map.
     void redoAtlasBorder();
-    // Fills m_borderStencils (weighted atlases).
-    void packBorderStencils();
 };
 
 } // namespace morphogen

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/domain/atlas_weights.hpp"
 #include "core/operators/stability.hpp"
 #include "core/sim/session_run.hpp"
 
@@ -29,6 +30,11 @@ RunResult runSimulation(Simulator& simulator, const Session& session, const RunO
             os << "the simulation blew up between step " << before + 1 << " and step "
                << result.stepsDone << " (" << *problem << ", backend " << simulator.backendName()
                << ", dt " << session.dt << "); try a smaller time step such as --dt " << dt;
+            // Not a time-step matter there: the operator itself has growing modes.
+            if (session.atlasWeights && session.atlasWeights->tensor &&
+                session.diffusion.type == DiffusionType::Anisotropic)
+                os << "; on a mesh, anisotropy on badly shaped tiles can also grow by itself: "
+                      "try more tiles (--tiles) or lower the tensors' a1/a2";
             throw BlowUpError(os.str(), result.stepsDone, dt);
         }
         if (options.progress)

@@ -8,6 +8,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/domain/atlas_weights.hpp"
+#include "core/sim/simulator.hpp"
 
 namespace morphogen {
 
@@ -29,7 +30,7 @@ int substepsAt(const Session& session, double h) {
     // A weighted atlas's coefficients are 1/h^2 of its texels (in units^-2):
     // its limit shrinks with their largest sum as a grid's with 4/h^2.
     if (session.atlas && session.atlasWeights)
-        return weightedSubsteps(*session.atlasWeights);
+        return atlasSubsteps(session);
     if (h >= 1.0)
         return 1;
     return int(std::ceil(1.0 / (h * h) - 1e-9));
@@ -59,6 +60,27 @@ void place(Segment& segment, const Session& session, int width, int height, int 
 }
 
 } // namespace
+
+int atlasSubsteps(const Session& session) {
+    const AtlasWeights& weights = *session.atlasWeights;
+    double ratio = maxCoefficientSum(weights) / 4.0;
+    if (weights.tensor && session.diffusion.type == DiffusionType::Anisotropic)
+        ratio = std::max(ratio, maxTensorSumRatio(weights, sessionTensorMixes(session, nullptr)));
+    // A param map of a diffusion rate (on a mesh) reaches past the session's
+    // value: the limit shrinks with its largest value.
+    const ReactionModel& model = session.reactionModel();
+    double rateFactor = 1.0;
+    for (const auto& chemical : model.chemicals()) {
+        const auto map = session.paramMaps.find(chemical.diffusionParam);
+        const auto value = session.params.find(chemical.diffusionParam);
+        if (map != session.paramMaps.end() && value != session.params.end() && value->second > 0)
+            rateFactor = std::max(
+                rateFactor, double(std::max(std::abs(map->second.min), std::abs(map->second.max))) /
+                                double(value->second));
+    }
+    ratio *= rateFactor;
+    return ratio > 1.0 ? int(std::ceil(ratio - 1e-9)) : 1;
+}
 
 int refineSteps() {
     // What a level must correct is the resampling's error, at the scale of
@@ -167,9 +189,13 @@ std::string describeWeightedAtlas(const Session& session) {
               "no diagonals)";
         said = true;
     }
-    const int substeps = session.integrator == Integrator::ExplicitEuler
-                             ? weightedSubsteps(*session.atlasWeights)
-                             : 1;
+    if (session.atlasWeights->tensor && session.diffusion.type == DiffusionType::Anisotropic) {
+        os << "; anisotropic: each chemical's tensor follows the surface's direction field ("
+           << toString(session.surface.direction) << ")";
+        said = true;
+    }
+    const int substeps =
+        session.integrator == Integrator::ExplicitEuler ? atlasSubsteps(session) : 1;
     if (substeps > 1) {
         os << "; every step runs as " << substeps << " steps of dt/" << substeps
            << " (the largest sum of a texel's weights is "

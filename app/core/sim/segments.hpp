@@ -54,6 +54,11 @@ struct Segment {
 // InputError when a segment's step count passes the engine's limit.
 std::vector<Segment> segmentsOf(const Session& session);
 
+// A weighted atlas's explicit steps per session step (session.atlasWeights set):
+// its weights' limit, with anisotropy its chemicals' mixes', and with a param
+// map of a diffusion rate that map's largest value.
+int atlasSubsteps(const Session& session);
+
 // One line on how `session` reaches its size: units per cell, the base size
 // and the refinement levels, substeps; empty for a session that runs as
 // written at one unit per cell.

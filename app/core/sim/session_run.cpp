@@ -363,7 +363,9 @@ DeformedSurface SessionRun::deformSurface(const DeformSpec& spec) const {
     // The segment keeps its substeps (its steps are counted in them): a
     // compression that needs more would blow the explicit step up.
     if (part.integrator == Integrator::ExplicitEuler && d.weights) {
-        const int needed = weightedSubsteps(*d.weights);
+        Session deformed = part;
+        useAtlas(deformed, part.atlas, d.weights);
+        const int needed = atlasSubsteps(deformed);
         if (needed > segment.substeps)
             throw InputError("deformation: compressing by " + std::to_string(spec.factor) +
                              " there needs " + std::to_string(needed) +

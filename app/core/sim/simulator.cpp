@@ -10,6 +10,7 @@
 #include "core/numerics/kernel_symbol.hpp"
 #include "core/operators/stability.hpp"
 #include "core/session/param_map.hpp"
+#include "core/session/surface_geometry.hpp"
 
 namespace morphogen {
 
@@ -49,11 +50,22 @@ void loadVaryingParams(StepConstants& k, const Session& session, Session& unitRa
     if (k.tiled() && !session.paramMaps.empty())
         throw InputError("param_maps cannot vary a parameter over a tiled grid domain (a batched "
                          "sweep); tiles.params sets per-tile values");
+    if (session.atlas && !session.paramMaps.empty() &&
+        !(session.atlasPositions && session.surfaceGeometry))
+        throw InputError("param_maps (fields in grid x and y) cannot vary a parameter over an "
+                         "atlas domain that is not a mesh's (on a mesh they are fields in space)");
     k.paramMaps = State(session.width, session.height, int(varying));
+    std::vector<bool> used;
+    if (session.atlas && !session.paramMaps.empty())
+        for (std::uint32_t i = 0; i < session.atlas->cellCount(); ++i)
+            used.push_back(session.atlas->used(i));
     for (const auto& [name, spec] : session.paramMaps) {
         const std::vector<float> values =
-            evaluateParamMap(spec, session.width, session.height, session.seed, session.baseDir,
-                             session.layoutCellSize());
+            session.atlas
+                ? evaluateSurfaceParamMap(spec, name, *session.atlasPositions, used,
+                                          session.surfaceGeometry->unitsPerMesh(), session.seed)
+                : evaluateParamMap(spec, session.width, session.height, session.seed,
+                                   session.baseDir, session.layoutCellSize());
         std::copy(values.begin(), values.end(), addMappedParam(k, model, name, unitRates));
     }
     if (!k.tiled())
@@ -98,6 +110,15 @@ std::string operatorName(DiffusionOperator::Form form) {
     return "diffusion";
 }
 
+// An anisotropic session on a surface: each chemical's Witkin-Kass tensor,
+// measured from the surface's direction field, as a mix of the isotropic and
+// the two tensor operators (AtlasTensorWeights); the weights are the stencil.
+void loadTensorMixes(StepConstants& k, const Session& session, const AtlasWeights& weights) {
+    k.tensorPlanes = std::make_shared<const std::vector<float>>(tensorPlanes(*weights.tensor));
+    k.tensorMixes = sessionTensorMixes(session, k.op.rates.data());
+    k.op.form = DiffusionOperator::Form::Laplacian5;
+}
+
 // Refuses operators and integrators the domain cannot run (see core/domain/domain.hpp).
 void checkOperatorOnDomain(const StepConstants& k) {
     using Form = DiffusionOperator::Form;
@@ -108,14 +129,12 @@ void checkOperatorOnDomain(const StepConstants& k) {
         if (k.op.form != Form::Laplacian5 && k.op.form != Form::Laplacian9)
             throw InputError("the " + operatorName(k.op.form) +
                              " diffusion operator cannot run on an atlas domain (accepted there: "
-                             "isotropic diffusion, 5-point or 9-point stencil)");
+                             "isotropic diffusion, 5-point or 9-point stencil; anisotropic "
+                             "tensors on a mesh, whose surface gives them a direction field)");
         if (k.integrator == Integrator::SemiImplicit)
             throw InputError("the semi_implicit integrator cannot run on an atlas domain (its "
                              "relaxation weight comes from a grid's Fourier symbol); use "
                              "explicit_euler");
-        if (k.hasParamMaps())
-            throw InputError("param_maps (fields in grid x and y) cannot vary a parameter over an "
-                             "atlas domain");
     }
     // Its map texture would need tile-local fetches too; sweeps of tensor
     // fields are left to one-by-one runs.
@@ -170,6 +189,18 @@ bool StepConstants::paramsPerTileOnly() const {
     return true;
 }
 
+std::vector<std::array<float, 3>> sessionTensorMixes(const Session& session, const float* rates) {
+    const ReactionModel& model = session.reactionModel();
+    std::vector<std::array<float, 3>> mixes;
+    for (std::size_t c = 0; c < model.chemicals().size(); ++c) {
+        const auto it = session.diffusion.anisotropic.find(model.chemicals()[c].name);
+        const AnisotropicTensor t =
+            it == session.diffusion.anisotropic.end() ? AnisotropicTensor{} : it->second;
+        mixes.push_back(tensorMix(t.theta, t.a1, t.a2, rates ? rates[c] : 1.0));
+    }
+    return mixes;
+}
+
 StepConstants StepConstants::fromSession(const Session& session) {
     const ReactionModel& model = session.reactionModel();
     StepConstants k;
@@ -188,6 +219,8 @@ StepConstants StepConstants::fromSession(const Session& session) {
         if (weights->hasDiagonals())
             k.diagonalPlanes =
                 std::make_shared<const std::vector<float>>(morphogen::diagonalPlanes(*weights));
+        if (weights->tensor && k.op.form == DiffusionOperator::Form::Kernel3)
+            loadTensorMixes(k, session, *weights);
         // The weights are the stencil: their links (with their diagonals,
         // if any) run whether the session asked for 5 or 9 points.
         if (k.op.form == DiffusionOperator::Form::Laplacian9) {
@@ -222,6 +255,7 @@ bool updateLiveConstants(StepConstants& k, const Session& session) {
     k.op.kernels = fresh.op.kernels;
     k.op.mapCoefficients = fresh.op.mapCoefficients;
     k.op.stabilization = fresh.op.stabilization;
+    k.tensorMixes = fresh.tensorMixes;
     k.omega = fresh.omega;
     k.contraction = fresh.contraction;
     return true;

@@ -77,8 +77,17 @@ struct StepConstants {
     // diagonals: the weighted 5-point runs (op.form is Laplacian5), and
     // describePlan says so.
     bool nineToFivePoint = false;
+    // Anisotropic diffusion on a surface (AtlasWeights::tensor, an anisotropic
+    // session on a mesh): the 16 planes of its two operators L1, L2
+    // (tensorPlanes: links then diagonals of each), and per chemical its mix
+    // (p, q1, q2) (tensorMix, the chemical's rate included). Chemical c's term
+    // is then p S(u) + q1 L1(u) + q2 L2(u), S the weighted term above without
+    // the rate, each of the three summed as S is; op.form is Laplacian5.
+    std::shared_ptr<const std::vector<float>> tensorPlanes;
+    std::vector<std::array<float, 3>> tensorMixes;
 
     bool weighted() const { return weightPlanes != nullptr; }
+    bool tensorWeighted() const { return tensorPlanes != nullptr; }
     bool crossWeighted() const { return diagonalPlanes != nullptr; }
     bool hasParamMaps() const { return !mappedParams.empty(); }
     bool tiled() const { return domain.kind() == DomainKind::TiledGrid; }
@@ -93,6 +102,10 @@ struct StepConstants {
     // Throws InputError for combinations the backends cannot run.
     static StepConstants fromSession(const Session& session);
 };
+
+// Per chemical of an anisotropic session, its tensor's mix (tensorMix) at
+// `rates` (one per chemical; null: rate 1), for AtlasTensorWeights.
+std::vector<std::array<float, 3>> sessionTensorMixes(const Session& session, const float* rates);
 
 // One simulation backend. Runs steps without reading back; state() reads back.
 class Simulator {

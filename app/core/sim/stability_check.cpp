@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/base/limits.hpp"
+#include "core/domain/atlas_weights.hpp"
 #include "core/operators/stability.hpp"
 #include "core/sim/runner.hpp"
 #include "core/sim/segments.hpp"
@@ -30,7 +31,12 @@ float checkExplicitStep(const Segment& segment, const std::string& what, bool ve
                         StabilityReport& report) {
     const Session& part = segment.session;
     const double k = segment.substeps;
-    const ExplicitStability st = explicitStability(compileDiffusion(part), part.domain(), part.dt);
+    const DiffusionOperator op = compileDiffusion(part);
+    const ExplicitStability st =
+        part.atlasWeights && part.atlasWeights->tensor &&
+                part.diffusion.type == DiffusionType::Anisotropic
+            ? tensorAtlasStability(*part.atlasWeights, sessionTensorMixes(part, op.rates.data()))
+            : explicitStability(op, part.domain(), part.dt);
     if (!st.maxStableDt) {
         std::ostringstream os;
         os << what

@@ -23,6 +23,10 @@ texelPositionsOf(const SurfaceTiles& tiles) {
     return positions;
 }
 
+double MeshSurface::unitsPerMesh() const {
+    return m_setup->unitsPerWorld;
+}
+
 DeformedSurface MeshSurface::deformed(const DeformSpec& spec) const {
     SlabStretch stretch;
     stretch.centre =

@@ -18,6 +18,7 @@ public:
     MeshSurface(std::shared_ptr<const SurfaceSetup> setup, const SurfaceWeightOptions& options);
 
     DeformedSurface deformed(const DeformSpec& spec) const override;
+    double unitsPerMesh() const override;
 
     const std::shared_ptr<const SurfaceSetup>& setup() const { return m_setup; }
 

@@ -80,6 +80,8 @@ SurfaceSetup setUpSurface(Session& session,
     weights.unitsPerWorld = setup.unitsPerWorld;
     weights.metricCorrection = spec.metricCorrection;
     weights.crossTerm = spec.crossTerm;
+    if (session.diffusion.type == DiffusionType::Anisotropic)
+        weights.direction = spec.direction;
     if (spec.scaleBy == SurfaceScaleBy::MeanCurvature) {
         setup.featureScale = curvatureScale(setup.tiles, spec.scaleStrength);
         weights.featureScale = &setup.featureScale;

@@ -7,6 +7,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/limits.hpp"
 #include "core/domain/atlas_diagonals.hpp"
+#include "core/surface/surface_tensor.hpp"
 
 namespace morphogen {
 
@@ -34,6 +35,25 @@ double median(std::vector<double> v) {
 
 } // namespace
 
+TexelFloors texelFloors(const SurfaceTiles& tiles, double unitsPerWorld) {
+    const Atlas& atlas = *tiles.atlas;
+    std::vector<double> areas;
+    areas.reserve(atlas.cellCount());
+    double areaSum = 0;
+    for (std::size_t c = 0; c < atlas.cellCount(); ++c)
+        if (atlas.used(std::uint32_t(c))) {
+            const double a = double(tiles.texelArea[c]) * unitsPerWorld * unitsPerWorld;
+            areas.push_back(a);
+            areaSum += a;
+        }
+    TexelFloors floors;
+    floors.meanArea = areas.empty() ? 1.0 : areaSum / double(areas.size());
+    const double medianArea = median(std::move(areas));
+    floors.minArea = 0.05 * medianArea;
+    floors.minDistance = 0.2 * std::sqrt(medianArea);
+    return floors;
+}
+
 AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOptions& options) {
     const Atlas& atlas = *tiles.atlas;
     const std::size_t cells = atlas.cellCount();
@@ -52,19 +72,9 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
                                  " at cell " + std::to_string(c) + " must be positive and finite");
     }
 
-    std::vector<double> areas;
-    areas.reserve(cells);
-    double areaSum = 0;
-    for (std::size_t c = 0; c < cells; ++c)
-        if (atlas.used(std::uint32_t(c))) {
-            const double a = double(tiles.texelArea[c]) * scale * scale;
-            areas.push_back(a);
-            areaSum += a;
-        }
-    const double medianArea = median(areas);
-    const double minArea = 0.05 * medianArea;
-    const double minDistance = 0.2 * std::sqrt(medianArea);
-    const double meanArea = areas.empty() ? 1.0 : areaSum / double(areas.size());
+    const TexelFloors floors = texelFloors(tiles, scale);
+    const double minArea = floors.minArea, minDistance = floors.minDistance;
+    const double meanArea = floors.meanArea;
 
     AtlasWeights w;
     w.coefficients.assign(cells, {0.0f, 0.0f, 0.0f, 0.0f});
@@ -246,6 +256,16 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
             w.diagonal[i][std::size_t(slot)] = float(double(flux) / w.area[i]);
             w.diagonal[j][std::size_t(back)] = float(double(flux) / w.area[j]);
         }
+    }
+    if (options.direction) {
+        if (!options.metricCorrection)
+            throw InputError("surface weights: anisotropic diffusion on a surface needs the metric "
+                             "correction (its directions are measured on the surface)");
+        AtlasTensorWeights::Field isotropicPart;
+        w.tensor = std::make_shared<const AtlasTensorWeights>(
+            surfaceTensorWeights(tiles, w, *options.direction, scale, f, &isotropicPart));
+        w.coefficients = std::move(isotropicPart.links);
+        w.diagonal = std::move(isotropicPart.diagonals);
     }
     return w;
 }

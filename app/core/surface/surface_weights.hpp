@@ -1,8 +1,10 @@
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "core/domain/atlas_weights.hpp"
+#include "core/session/surface_spec.hpp"
 #include "core/surface/surface_tiles.hpp"
 
 namespace morphogen {
@@ -21,7 +23,20 @@ struct SurfaceWeightOptions {
     // With metric correction: the 9-point stencil's cross term (AtlasWeights::
     // diagonal), isotropic on sheared texels. Off: the 5-point weights only.
     bool crossTerm = true;
+    // Set: the weights also carry the anisotropic part (AtlasWeights::tensor,
+    // surfaceTensorWeights) for this direction field. Needs metricCorrection.
+    std::optional<SurfaceDirection> direction;
 };
+
+// The guards against degenerate texels (see surfaceWeights): areas below
+// minArea and centre distances below minDistance count as those floors (model
+// units), set from the median texel area.
+struct TexelFloors {
+    double minArea = 0;
+    double minDistance = 0;
+    double meanArea = 1; // over used texels: the uncorrected weights' texel area
+};
+TexelFloors texelFloors(const SurfaceTiles& tiles, double unitsPerWorld);
 
 // Per-texel weights of the Laplacian on the tiled surface (the AtlasWeights
 // contract: coefficients[i][d] * area[i], and diagonal[i][s] * area[i], is the
