@@ -13,6 +13,7 @@
 #include "core/base/errors.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/operators/stability.hpp"
+#include "core/sim/cpu_kernels.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "test_support.hpp"
 
@@ -281,13 +282,17 @@ TEST(AtlasCpu, BlobAtAValence5CornerSpreadsSymmetricallyAndSmoothly) {
 }
 
 TEST(AtlasCpu, GenericPathOnRotatedTilesEqualsThePeriodicGrid) {
-    // Six chemicals take the generic row-pass path (the fused kernels stop at
-    // four), which walks atlas rows with atlasLaplacianRow.
+    // A diffusing chemical at rate 0 sends the run down the generic row-pass
+    // path (the fused kernels refuse it), which walks atlas rows with
+    // atlasLaplacianRow; s1 and s2 still diffuse across the tile edges.
     const int n = 8;
     auto atlas = std::make_shared<const Atlas>(Atlas::rotatedTiles(n));
     const std::vector<std::uint32_t> planeCell = Atlas::rotatedTilesPlaneCells(n);
     Session onAtlas = loadPreset("meinhardt_random_stripes");
+    onAtlas.params["Dg"] = 0.0f;
     useAtlas(onAtlas, atlas);
+    ASSERT_EQ(fusedExplicitStep(onAtlas.reactionModel(), StepConstants::fromSession(onAtlas)),
+              nullptr);
     Session grid = onAtlas;
     grid.atlas.reset();
     grid.width = grid.height = 3 * n;

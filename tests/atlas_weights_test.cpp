@@ -5,6 +5,8 @@
 // the atlas are refused.
 
 #include <algorithm>
+#include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -13,6 +15,7 @@
 #include "core/domain/atlas_diagonals.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/operators/stability.hpp"
+#include "core/sim/cpu_kernels.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/segments.hpp"
 #include "test_support.hpp"
@@ -42,7 +45,7 @@ State startOf(const Session& s, unsigned seed) {
 TEST(AtlasWeightsCpu, UnitWeightsAreTheUnweightedAtlasBitForBit) {
     auto atlas = std::make_shared<const Atlas>(Atlas::periodicPlane(8, 3, 2));
     auto unit = std::make_shared<const AtlasWeights>(uniformAtlasWeights(*atlas));
-    // gs_coral: the fused kernel; meinhardt (six chemicals): the generic path.
+    // Two chemicals and six (every built-in model runs the fused kernels).
     for (const char* preset : {"gs_coral", "meinhardt_random_stripes"}) {
         SCOPED_TRACE(preset);
         Session plain = loadPreset(preset);
@@ -206,8 +209,9 @@ std::vector<double> referenceStep(const Atlas& atlas, const AtlasWeights& w, con
 
 // Every texel, interior (the fused rows) and border (the index arrays), steps
 // by the 9-point weighted Laplacian: float rounding off a double reference.
-// The generic row path (six-chemical meinhardt) and the index path of active
-// tiles (every tile active) agree with the fused/whole-texture run.
+// The index path of active tiles (every tile active) agrees with the
+// whole-texture run: the fused kernel on padded tiles for a two- and a
+// six-chemical model, and the generic row path.
 TEST(AtlasWeightsCpu, NinePointWeightsReachEveryTexelOnEveryPath) {
     for (auto atlas : {std::make_shared<const Atlas>(Atlas::cube(6)),
                        std::make_shared<const Atlas>(Atlas::rotatedTiles(6))}) {
@@ -232,10 +236,18 @@ TEST(AtlasWeightsCpu, NinePointWeightsReachEveryTexelOnEveryPath) {
             runOn(weighted(s, std::make_shared<const AtlasWeights>(noDiagonals)), start, 1);
         EXPECT_GT(test::maxAbsDifference(five, one), 1e-2f);
 
-        for (const char* preset : {"gs_coral", "meinhardt_random_stripes"}) {
-            SCOPED_TRACE(preset);
+        // The third: a diffusing chemical at rate 0 takes the generic path.
+        for (const auto& [preset, zeroRate] :
+             {std::pair{"gs_coral", ""}, std::pair{"meinhardt_random_stripes", ""},
+              std::pair{"meinhardt_random_stripes", "Dg"}}) {
+            SCOPED_TRACE(std::string(preset) + " " + zeroRate);
             Session p = loadPreset(preset);
+            if (*zeroRate)
+                p.params[zeroRate] = 0.0f;
             useAtlas(p, atlas, weights);
+            ASSERT_EQ(fusedWeightedStep(p.reactionModel(), StepConstants::fromSession(p)) ==
+                          nullptr,
+                      bool(*zeroRate));
             const State from = startOf(p, 5);
             const State whole = runOn(p, from, 40);
             CpuSimulator tiles(p);

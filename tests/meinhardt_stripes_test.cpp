@@ -13,6 +13,7 @@
 #include "core/models/initial_condition.hpp"
 #include "core/models/meinhardt_stripes.hpp"
 #include "core/models/reaction_model.hpp"
+#include "core/sim/cpu_kernels.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "test_support.hpp"
 
@@ -118,6 +119,10 @@ TEST(CpuKernels, FusedAndGenericPathsAgreeForEveryModel) {
         const ParamSpec& first = model->params().front();
         const float v = fused.params.at(first.name);
         generic.paramMaps[first.name] = {ParamMapSpec::Field::LinearX, v, v};
+        // Every built-in model has its fused kernel (up to 12 chemicals), so
+        // the two runs take different code.
+        ASSERT_NE(fusedExplicitStep(*model, StepConstants::fromSession(fused)), nullptr);
+        ASSERT_EQ(fusedExplicitStep(*model, StepConstants::fromSession(generic)), nullptr);
         const State a = test::runCpu(fused);
         const State b = test::runCpu(generic);
         const State start = makeInitialState(fused.init, *model, fused.params, fused.width,

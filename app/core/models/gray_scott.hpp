@@ -14,7 +14,7 @@ public:
         static constexpr int kChemicals = 2;
         static constexpr bool diffuses(int) { return true; }
         explicit Cell(const float* p) : F(p[0]), k(p[1]) {}
-        void react(const float* c, float* dcdt) const {
+        MORPHOGEN_CELL_REACT void react(const float* c, float* dcdt) const {
             const float uvv = c[0] * c[1] * c[1];
             dcdt[0] = -uvv + F * (1.0f - c[0]);
             dcdt[1] = uvv - (F + k) * c[1];

@@ -58,7 +58,7 @@ public:
         // packParams() order: c, alpha, beta, gamma, Dg, Ds, rho0, rho1.
         explicit Cell(const float* p)
             : c(p[0]), alpha(p[1]), beta(p[2]), gamma(p[3]), rho0(p[6]), rho1(p[7]) {}
-        void react(const float* x, float* dcdt) const {
+        MORPHOGEN_CELL_REACT void react(const float* x, float* dcdt) const {
             const float g1 = x[0], g2 = x[1], r = x[2], s1 = x[3], s2 = x[4], sub = x[5];
             // A select, not a branch: it vectorises.
             const float rSafe = r > kMinR ? r : kMinR;

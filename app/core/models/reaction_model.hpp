@@ -60,7 +60,15 @@ struct RowView {
 //   explicit Cell(const float* params);           // packParams() layout
 //   void react(const float* c, float* dcdt) const;
 // react() must be plain arithmetic, free of branches and calls, so it
-// vectorises across cells. models/react_row.hpp turns a Cell into react().
+// vectorises across cells, and declared MORPHOGEN_CELL_REACT: GCC's inliner
+// otherwise declines the larger ones (watercolour's) inside the fused kernel,
+// and the call then stops the loop's vectorisation ("statement clobbers
+// memory"). models/react_row.hpp turns a Cell into react().
+#if defined(__GNUC__)
+#define MORPHOGEN_CELL_REACT inline __attribute__((always_inline))
+#else
+#define MORPHOGEN_CELL_REACT inline
+#endif
 
 // A reaction model: its chemicals, its parameters and its reaction function,
 // written twice from one description: a GLSL snippet and the C++ Cell above.

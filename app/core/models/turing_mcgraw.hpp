@@ -20,7 +20,7 @@ public:
         static constexpr int kChemicals = 2;
         static constexpr bool diffuses(int) { return true; }
         explicit Cell(const float* p) : alpha(p[0]), beta(p[1]) {}
-        void react(const float* c, float* dcdt) const {
+        MORPHOGEN_CELL_REACT void react(const float* c, float* dcdt) const {
             const float uv = c[0] * c[1];
             dcdt[0] = uv - c[0] - alpha;
             dcdt[1] = beta - uv;

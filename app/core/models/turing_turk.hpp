@@ -24,7 +24,7 @@ public:
         // beta is a fixed per-cell field, not a chemical that spreads.
         static constexpr bool diffuses(int chemical) { return chemical != 2; }
         explicit Cell(const float* p) : s(p[0]) {}
-        void react(const float* c, float* dcdt) const {
+        MORPHOGEN_CELL_REACT void react(const float* c, float* dcdt) const {
             const float ab = c[0] * c[1];
             dcdt[0] = s * (16.0f - ab);
             dcdt[1] = s * (ab - c[1] - c[2]);

@@ -65,7 +65,7 @@ public:
         explicit Cell(const float* p)
             : evaporation(p[2]), absorption(p[3]), film(p[4]), dry(p[5]), settle(p[6]), trap(p[7]) {
         }
-        void react(const float* c, float* dcdt) const {
+        MORPHOGEN_CELL_REACT void react(const float* c, float* dcdt) const {
             const float w = c[W], s = c[S];
             const float r = 1.0f / (w + film);
             const float leave = (evaporation + absorption * s) * w * r;

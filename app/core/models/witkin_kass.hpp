@@ -20,7 +20,7 @@ public:
         static constexpr int kChemicals = 2;
         static constexpr bool diffuses(int) { return true; }
         explicit Cell(const float* p) : k(p[0]), b(p[1]), threshold(p[4]) {}
-        void react(const float* c, float* dcdt) const {
+        MORPHOGEN_CELL_REACT void react(const float* c, float* dcdt) const {
             // A select, not a branch: it vectorises.
             const float r = c[0] - c[1] > threshold ? k : 0.0f;
             dcdt[0] = r - b * c[0];

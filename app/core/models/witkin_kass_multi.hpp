@@ -40,7 +40,7 @@ public:
         static constexpr bool diffuses(int) { return true; }
         explicit Cell(const float* p)
             : k(p[0]), b(p[1]), threshold(kMaxOfDifferences ? p[2] : 0.0f) {}
-        void react(const float* c, float* dcdt) const {
+        MORPHOGEN_CELL_REACT void react(const float* c, float* dcdt) const {
             float hi = c[0] - c[1], lo = hi;
             for (int i = 1; i < N; ++i) {
                 const float d = c[2 * i] - c[2 * i + 1];

@@ -42,10 +42,8 @@ using StepRowsKernel = void (*)(const StepConstants& k, const State& in, State& 
 using RelaxRowsKernel = void (*)(const StepConstants& k, const State& x, const State& rhs,
                                  State& out, int y0, int y1);
 
-// Explicit Euler: out = clamp(c + dt (react(c) + A c)). Null for other models,
-// models with more than four chemicals (the per-cell arrays stop vectorising:
-// measured at 256^2, the generic path is 3.4x faster for meinhardt_stripes and
-// 4-5x for the 3- and 5-direction Witkin-Kass models), the tensor map,
+// Explicit Euler: out = clamp(c + dt (react(c) + A c)). Null for other models
+// (not built in), the tensor map,
 // per-cell parameters, or a diffusion operator that is zero on a chemical that
 // normally diffuses (or not zero on one that does not): the generic path's
 // term is then exactly 0.
@@ -62,8 +60,8 @@ using StepTileKernel = void (*)(const StepConstants& k, const State& in, State& 
 // Null where fusedExplicitStep would be null on a grid, and for other domains.
 StepTileKernel fusedWeightedStep(const ReactionModel& model, const StepConstants& k);
 
-// Semi-implicit right-hand side: out = c + dt react(c). Null for other models,
-// more than four chemicals and per-cell parameters.
+// Semi-implicit right-hand side: out = c + dt react(c). Null for other models
+// and per-cell parameters.
 StepRowsKernel fusedRhsPass(const ReactionModel& model, const StepConstants& k);
 
 // Semi-implicit sweep; null for the tensor map and per-cell parameters.
