@@ -46,6 +46,13 @@ float maxAbsValue(const State& s) {
     return worst;
 }
 
+double planeSum(const State& s, int chemical) {
+    double sum = 0;
+    for (std::size_t i = 0; i < s.cellCount(); ++i)
+        sum += s.plane(chemical)[i];
+    return sum;
+}
+
 float maxAbsDifference(const State& a, const State& b) {
     float worst = 0.0f;
     for (int c = 0; c < a.channels(); ++c)

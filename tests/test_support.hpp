@@ -22,6 +22,8 @@ float maxAbsValue(const State& s);
 
 // Largest absolute difference over all chemicals.
 float maxAbsDifference(const State& a, const State& b);
+// The sum of a chemical over every cell, in double.
+double planeSum(const State& s, int chemical);
 
 // A folder under the system's temporary folder for one test file's files (one per process),
 // created if missing.

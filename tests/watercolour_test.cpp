@@ -27,13 +27,6 @@ using M = WatercolourModel;
 
 namespace {
 
-double planeSum(const State& s, int chemical) {
-    double sum = 0;
-    for (std::size_t i = 0; i < s.cellCount(); ++i)
-        sum += s.plane(chemical)[i];
-    return sum;
-}
-
 json paintingJson(int size, int steps, const json& strokes) {
     return {{"model", "watercolour"},
             {"size", size},
@@ -83,23 +76,23 @@ TEST(Watercolour, ConservesWaterAndPigmentOnTheCpu) {
         cpu.setState(start);
         cpu.run(150); // mid-wash: water on the paper, in the paper and gone
         const State end = cpu.state();
-        const double water0 = planeSum(start, M::W) + planeSum(start, M::G);
-        const double water1 = planeSum(end, M::W) + planeSum(end, M::G);
+        const double water0 = test::planeSum(start, M::W) + test::planeSum(start, M::G);
+        const double water1 = test::planeSum(end, M::W) + test::planeSum(end, M::G);
         // Float rounding only: each step adds and subtracts the same float
         // amounts in ~2000 cells; 1e-5 relative over 150 steps is ~100x the
         // drift measured and far below any leak (a missing term loses ~1%
         // a step).
         EXPECT_NEAR(water1 / water0, 1.0, 1e-5);
         for (int k = 0; k < 2; ++k) {
-            const double p0 = planeSum(start, M::P1 + k) + planeSum(start, M::D1 + k);
-            const double p1 = planeSum(end, M::P1 + k) + planeSum(end, M::D1 + k);
+            const double p0 = test::planeSum(start, M::P1 + k) + test::planeSum(start, M::D1 + k);
+            const double p1 = test::planeSum(end, M::P1 + k) + test::planeSum(end, M::D1 + k);
             EXPECT_NEAR(p1 / p0, 1.0, 1e-5) << "pigment " << k + 1;
         }
         // The run moved: a third of the water is gone, pigment has settled.
-        EXPECT_GT(planeSum(end, M::G), 0.3 * water0);
-        EXPECT_GT(planeSum(end, M::D1), 0.3 * planeSum(start, M::P1));
+        EXPECT_GT(test::planeSum(end, M::G), 0.3 * water0);
+        EXPECT_GT(test::planeSum(end, M::D1), 0.3 * test::planeSum(start, M::P1));
         std::printf("%s: water %.9f -> %.9f, gone %.1f%%\n", toString(edges).c_str(), water0,
-                    water1, 100 * planeSum(end, M::G) / water0);
+                    water1, 100 * test::planeSum(end, M::G) / water0);
     }
 }
 

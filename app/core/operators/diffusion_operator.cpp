@@ -134,6 +134,33 @@ void compileAnisotropic(const Session& session, DiffusionOperator& op) {
     }
 }
 
+// Drops on a tilted canvas: the operator as 3x3 (or 5x5) kernels with the
+// downhill drift added to every chemical that diffuses (gravity.hpp).
+void addGravity(const Session& session, DiffusionOperator& op) {
+    using Form = DiffusionOperator::Form;
+    if (op.form == Form::TensorMap)
+        throw InputError("\"gravity\" does not combine with a diffusion map (diffusion.map)");
+    if (op.form == Form::Laplacian5 || op.form == Form::Laplacian9) {
+        for (int c = 0; c < op.chemicals; ++c) {
+            Kernel5 k;
+            if (op.form == Form::Laplacian5) {
+                k.at(-1, 0) = k.at(1, 0) = k.at(0, -1) = k.at(0, 1) = 1.0;
+                k.at(0, 0) = -4.0;
+            } else {
+                k.at(-1, 0) = k.at(1, 0) = k.at(0, -1) = k.at(0, 1) = 4.0 / 6.0;
+                k.at(-1, -1) = k.at(1, -1) = k.at(-1, 1) = k.at(1, 1) = 1.0 / 6.0;
+                k.at(0, 0) = -20.0 / 6.0;
+            }
+            op.kernels[std::size_t(c)] = k.scaled(op.rates[std::size_t(c)]);
+        }
+        op.form = Form::Kernel3;
+    }
+    const ReactionModel& model = session.reactionModel();
+    for (int c = 0; c < op.chemicals; ++c)
+        if (!model.chemicals()[std::size_t(c)].diffusionParam.empty())
+            addGravityDrift(op.kernels[std::size_t(c)], session.gravity, session.gridSpacing);
+}
+
 } // namespace
 
 DiffusionOperator compileDiffusion(const Session& session) {
@@ -160,6 +187,8 @@ DiffusionOperator compileDiffusion(const Session& session) {
         compileAnisotropic(session, op);
         break;
     }
+    if (session.gravity.active())
+        addGravity(session, op);
     return op;
 }
 

@@ -341,7 +341,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
                        "steps",          "seed",        "init",
                        "colormap",       "height",      "length",
                        "coarse_to_fine", "surface",     "edits",
-                       "strokes"});
+                       "strokes",        "gravity"});
     Session s;
     s.name = top.string("name", "");
     s.description = top.string("description", "");
@@ -361,6 +361,8 @@ Session sessionFromJson(const json& root, const std::string& source) {
     s.diffusion = model->defaultDiffusion();
     if (const json* diffusion = top.find("diffusion"))
         s.diffusion = diffusionFromJson(*diffusion, source, *model);
+    if (const json* gravity = top.find("gravity"))
+        s.gravity = gravityFromJson(top, *gravity);
 
     s.integrator = top.choice("integrator", s.integrator, parseIntegrator, integratorNames());
     // "jacobi_sweeps" is the name sessions written before the rename use.
@@ -418,6 +420,8 @@ json sessionToJson(const Session& s) {
         j["coarse_to_fine"] = false;
     j["edges"] = toString(s.edges);
     j["diffusion"] = diffusionToJson(s.diffusion);
+    if (s.gravity.active())
+        j["gravity"] = gravityToJson(s.gravity);
     j["integrator"] = toString(s.integrator);
     if (s.integrator == Integrator::SemiImplicit)
         j["relaxation_passes"] = s.relaxationPasses;
@@ -702,6 +706,12 @@ void validateSession(const Session& s, const std::string& source) {
     if (s.relaxationPasses < 1 || s.relaxationPasses > kMaxRelaxationPasses)
         throw InputError(source + ": relaxation passes is " + std::to_string(s.relaxationPasses) +
                          ", accepted range is [1, " + std::to_string(kMaxRelaxationPasses) + "]");
+    if (s.gravity.active() && s.surface.active())
+        throw InputError(source + ": \"gravity\" runs drops down a flat canvas; on a model "
+                                  "(\"surface\") it is not supported yet: leave out one of them");
+    if (s.gravity.active() && s.diffusion.map)
+        throw InputError(source + ": \"gravity\" does not combine with a diffusion map "
+                                  "(diffusion.map); use a constant tensor or isotropic diffusion");
     if (!s.schedule.empty() && !s.stages.empty())
         throw InputError(source + ": a coarse-to-fine \"schedule\" does not combine with "
                                   "cascade \"stages\": give one of them");

@@ -16,6 +16,7 @@
 #include "core/models/initial_condition.hpp"
 #include "core/models/reaction_model.hpp"
 #include "core/session/cascade.hpp"
+#include "core/session/gravity.hpp"
 #include "core/session/height_spec.hpp"
 #include "core/session/live_edit.hpp"
 #include "core/session/param_map.hpp"
@@ -74,6 +75,9 @@ struct Session {
     double length = 0;
     EdgeMode edges = EdgeMode::Periodic;
     DiffusionSpec diffusion;
+    // Drops running down a tilted canvas: a downhill drift of every diffusing
+    // chemical (gravity.hpp). Off by default.
+    Gravity gravity;
     float dt = 1.0f;
     int steps = 1000;
     Integrator integrator = Integrator::ExplicitEuler;
