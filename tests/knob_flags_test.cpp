@@ -376,3 +376,31 @@ TEST(KnobFlags, InitialConditionRefusals) {
     EXPECT_TRUE(contains(errorFor("turk_large_spots", turk),
                          "--init-inside 'q=8': field 'init.inside.q' is not a chemical"));
 }
+
+// --gravity ANGLE:STRENGTH is the JSON "gravity" block, read by its reader:
+// the same values, ranges and messages (prefixed with the flag); off clears it.
+TEST(KnobFlags, GravityIsTheJsonBlock) {
+    KnobFlags f;
+    f.gravity = "250:0.4";
+    Session s = loadPreset("watercolour_wet_in_wet");
+    applyKnobFlags(f, s);
+    EXPECT_EQ(s.gravity, presetWithJson("watercolour_wet_in_wet",
+                                        {{"gravity", {{"angle", 250}, {"strength", 0.4}}}})
+                             .gravity);
+    EXPECT_EQ(s.gravity, (Gravity{250.0, 0.4}));
+    f.gravity = "off";
+    applyKnobFlags(f, s);
+    EXPECT_FALSE(s.gravity.active());
+    EXPECT_TRUE(loadPreset("watercolour_drops").gravity.active());
+
+    f.gravity = "270";
+    EXPECT_TRUE(contains(errorFor("watercolour_drops", f), "is not ANGLE:STRENGTH"));
+    f.gravity = "270:fast";
+    EXPECT_TRUE(contains(errorFor("watercolour_drops", f), "'fast' is not a number"));
+    f.gravity = "270:-1";
+    const std::string negative = errorFor("watercolour_drops", f);
+    EXPECT_TRUE(contains(negative, "--gravity")) << negative;
+    EXPECT_TRUE(contains(negative, "gravity.strength")) << negative;
+    f.gravity = "400:1";
+    EXPECT_TRUE(contains(errorFor("watercolour_drops", f), "gravity.angle"));
+}

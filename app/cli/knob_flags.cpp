@@ -9,6 +9,7 @@
 
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/json_fields.hpp"
 #include "core/models/diffusion_spec.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/session/param_map.hpp"
@@ -426,11 +427,26 @@ std::pair<std::string, json> paramMapFlagJson(const std::string& text) {
     return {name, spec};
 }
 
+json gravityFlagJson(const std::string& text) {
+    if (text == "off")
+        return {{"angle", Gravity{}.angle}, {"strength", 0}};
+    const std::vector<std::string> parts = split(text, ':');
+    if (parts.size() != 2)
+        throw InputError("--gravity: '" + text +
+                         "' is not ANGLE:STRENGTH (degrees counter-clockwise from +x, 270 down "
+                         "the page; model units per unit time, e.g. 270:0.5) or off");
+    return {{"angle", numberJson("--gravity", parts[0])},
+            {"strength", numberJson("--gravity", parts[1])}};
+}
+
 std::vector<std::string> applyKnobFlags(const KnobFlags& flags, Session& session) {
     std::vector<std::string> notes;
     applyDiffusionFlags(flags, session, notes);
     applyParamMapFlags(flags.paramMaps, session);
     applyInitFlags(flags, session);
+    if (!flags.gravity.empty())
+        session.gravity = gravityFromJson(FieldReader(json::object(), "--gravity", ""),
+                                          gravityFlagJson(flags.gravity));
     return notes;
 }
 
@@ -496,6 +512,13 @@ void addKnobFlags(CLI::App& cmd, KnobFlags& f) {
                    "values CHEMICAL=VALUE,... in the spots, grid discs or square")
         ->type_name("CHEM=V,...")
         ->group(init);
+
+    cmd.add_option("--gravity", f.gravity,
+                   "tilt the canvas: every diffusing chemical drifts downhill at STRENGTH model "
+                   "units per unit time towards ANGLE (degrees counter-clockwise from +x; 270 "
+                   "runs down the page), e.g. 270:0.5 for drops; off removes a session's")
+        ->type_name("ANGLE:STRENGTH")
+        ->group("Gravity (JSON \"gravity\")");
 }
 
 } // namespace morphogen::cli

@@ -32,6 +32,7 @@ struct KnobFlags {
     std::vector<std::string> initBase;    // --init-base CHEM=V,... (repeatable)
     std::vector<std::string> initNoise;   // --init-noise CHEM=V,...
     std::vector<std::string> initInside;  // --init-inside CHEM=V,...
+    std::string gravity;                  // --gravity ANGLE:STRENGTH, or off
 };
 
 // The rate ratio (along / across) --theta and --orientation give a session
@@ -42,7 +43,7 @@ constexpr double kDefaultAnisotropy = 4.0;
 void addKnobFlags(CLI::App& cmd, KnobFlags& flags);
 
 // Applies the flags to `session` (diffusion, then parameter maps, then the
-// initial condition). Returns notes for stderr about what was changed beyond
+// initial condition, then gravity). Returns notes for stderr about what was changed beyond
 // the flag's own key (an isotropic session made anisotropic, an orientation
 // field replaced). Throws InputError naming the flag.
 std::vector<std::string> applyKnobFlags(const KnobFlags& flags, Session& session);
@@ -58,5 +59,9 @@ nlohmann::json orientationFlagJson(const std::string& text);
 // "NAME=radial:LOW:HIGH[:CX,CY]", "NAME=noise:LOW:HIGH[:SCALE]",
 // "NAME=image:FILE:LOW:HIGH"; "NAME=none" gives a null map (remove it).
 std::pair<std::string, nlohmann::json> paramMapFlagJson(const std::string& text);
+
+// The JSON "gravity" block one --gravity value stands for: "ANGLE:STRENGTH"
+// (degrees, units per unit time) or "off" (strength 0). Ranges are the reader's.
+nlohmann::json gravityFlagJson(const std::string& text);
 
 } // namespace morphogen::cli
