@@ -148,6 +148,7 @@ private:
     void drawControls(float x, float y, float w, float h);
     void drawModelSection();
     void drawDirectionControls(const Session& base);
+    void drawGravityControls(const Session& base);
     void drawParamsSection();
     void drawBrushSection();
     void drawCascadeSection();

@@ -254,6 +254,8 @@ void Designer::drawModelSection() {
                 edited(base, [&](json& j) { j["edges"] = edges == 0 ? "periodic" : "clamped"; });
             m_doc.replace(std::move(s), "edges");
         });
+    if (!base.surface.active())
+        drawGravityControls(base);
     int size[2] = {base.width, base.height};
     ImGui::InputInt2("grid", size);
     if (ImGui::IsItemDeactivatedAfterEdit() && (size[0] != base.width || size[1] != base.height))
@@ -268,6 +270,40 @@ void Designer::drawModelSection() {
         });
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("cells of the canvas; the pattern keeps its size in the picture");
+}
+
+// Drops on a tilted canvas (Session::gravity): on, the downhill angle and the
+// drift speed; each change is a new session, as the edges are.
+void Designer::drawGravityControls(const Session& base) {
+    bool on = base.gravity.active();
+    float angle = float(base.gravity.angle);
+    float strength = float(on ? base.gravity.strength : 0.3);
+    bool changed = ImGui::Checkbox("gravity", &on);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("tilt the canvas: water and everything that diffuses drifts downhill\n"
+                          "(drops run down the page; 270 degrees is down)");
+    if (on) {
+        ImGui::DragFloat("downhill", &angle, 1.0f, -360.0f, 360.0f, "%.0f degrees");
+        changed |= ImGui::IsItemDeactivatedAfterEdit();
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("counter-clockwise from +x: 270 is down the page");
+        ImGui::DragFloat("drift", &strength, 0.01f, 0.0f, float(kMaxGravityStrength),
+                         "%.2f units/time");
+        changed |= ImGui::IsItemDeactivatedAfterEdit();
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("how fast things run downhill, model units per unit time");
+    }
+    if (!changed)
+        return;
+    guarded("gravity", [&] {
+        Session s = edited(base, [&](json& j) {
+            if (on)
+                j["gravity"] = {{"angle", angle}, {"strength", strength}};
+            else
+                j.erase("gravity");
+        });
+        m_doc.replace(std::move(s), on ? "gravity" : "gravity off");
+    });
 }
 
 // On a model the tensors' angles are measured from a direction field on the
