@@ -246,6 +246,11 @@ void Designer::drawModelSection() {
             });
             m_doc.replace(std::move(s), std::string("integrator ") + integrators[integrator]);
         });
+    // On a model the tiles' connectivity is the surface: no canvas edges, and
+    // the atlas's size comes from its tiles (the session's surface block).
+    if (base.surface.active())
+        return;
+    drawGravityControls(base);
     int edges = base.edges == EdgeMode::Periodic ? 0 : 1;
     const char* edgeNames[] = {"periodic (tiles seamlessly)", "clamped"};
     if (ImGui::Combo("edges", &edges, edgeNames, 2))
@@ -254,8 +259,6 @@ void Designer::drawModelSection() {
                 edited(base, [&](json& j) { j["edges"] = edges == 0 ? "periodic" : "clamped"; });
             m_doc.replace(std::move(s), "edges");
         });
-    if (!base.surface.active())
-        drawGravityControls(base);
     int size[2] = {base.width, base.height};
     ImGui::InputInt2("grid", size);
     if (ImGui::IsItemDeactivatedAfterEdit() && (size[0] != base.width || size[1] != base.height))
