@@ -108,3 +108,30 @@ TEST(SessionStability, AnOperatorGrowingForEveryDtIsRefused) {
     s.diffusion.stabilize = true;
     EXPECT_FALSE(checkSessionStability(s, false).refused);
 }
+
+// A param map of a diffusion rate: the step must be stable where the map is
+// fastest. Before, the check used the session's own rate and a Du map up to 3
+// (the session's 0.21) blew up at the session's dt.
+TEST(SessionStability, MappedDiffusionRatesAreCheckedAtTheirLargest) {
+    Session s = test::smallSession("gs_coral", 32, 200);
+    s.paramMaps["Du"] = {ParamMapSpec::Field::LinearX, 0.2f, 3.0f};
+    const float before = s.dt;
+    const StabilityReport report = checkSessionStability(s, true);
+    EXPECT_FALSE(report.refused);
+    EXPECT_TRUE(report.capped);
+    EXPECT_LT(s.dt, before);
+    // 5-point diffusion at rate 3 on unit cells: dt <= 2 / (8 * 3).
+    EXPECT_LE(s.dt, 2.0f / 24.0f);
+    bool named = false;
+    for (const StabilityNote& note : report.notes)
+        named = named || note.text.find("Du 3") != std::string::npos;
+    EXPECT_TRUE(named);
+    const State end = test::runCpu(s);
+    for (int c = 0; c < end.channels(); ++c)
+        for (std::size_t i = 0; i < end.cellCount(); ++i)
+            ASSERT_TRUE(std::isfinite(end.plane(c)[i]));
+    // A map that stays at or below the session's rate changes nothing.
+    Session slow = test::smallSession("gs_coral", 32, 200);
+    slow.paramMaps["Du"] = {ParamMapSpec::Field::LinearX, 0.05f, 0.2f};
+    EXPECT_FALSE(checkSessionStability(slow, false).capped);
+}

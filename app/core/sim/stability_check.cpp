@@ -22,6 +22,29 @@ template <typename... Args> std::string format(const char* pattern, Args... args
     return buffer;
 }
 
+// A param map of a diffusion rate sets it per cell: the step must be stable at
+// the map's largest value, so the check compiles the operator with each mapped
+// rate at its map's maximum. Notes name the rates raised. (On an atlas the
+// mapped rates raise the substeps instead: atlasSubsteps.)
+Session withFastestMappedRates(const Session& part, std::string& raised) {
+    Session s = part;
+    if (part.atlas)
+        return s;
+    for (const ChemicalSpec& c : part.reactionModel().chemicals()) {
+        auto it = part.paramMaps.find(c.diffusionParam);
+        if (c.diffusionParam.empty() || it == part.paramMaps.end())
+            continue;
+        const float fastest = std::max(it->second.min, it->second.max);
+        float& rate = s.params[c.diffusionParam];
+        if (rate == fastest)
+            continue; // unchanged, or a second chemical of the same rate
+        rate = fastest;
+        raised += (raised.empty() ? " " : ", ") +
+                  format("%s %g", c.diffusionParam.c_str(), double(fastest));
+    }
+    return s;
+}
+
 // The explicit step's stability for one segment: sets report.refused for an
 // operator that grows for every dt; returns the session dt to use (capped,
 // with a warning, when the segment's dt is above its limit). Values are
@@ -29,9 +52,16 @@ template <typename... Args> std::string format(const char* pattern, Args... args
 // segment in messages.
 float checkExplicitStep(const Segment& segment, const std::string& what, bool verbose,
                         StabilityReport& report) {
-    const Session& part = segment.session;
+    std::string raised;
+    const Session part = withFastestMappedRates(segment.session, raised);
     const double k = segment.substeps;
     const DiffusionOperator op = compileDiffusion(part);
+    if (!raised.empty() && verbose)
+        report.notes.push_back(
+            {false, what +
+                        "the stability check takes each mapped diffusion rate at its map's "
+                        "largest value:" +
+                        raised});
     const ExplicitStability st =
         part.atlasWeights && part.atlasWeights->tensor &&
                 part.diffusion.type == DiffusionType::Anisotropic
@@ -65,8 +95,9 @@ float checkExplicitStep(const Segment& segment, const std::string& what, bool ve
         }
         report.notes.push_back(
             {true,
-             format("%sdt %g exceeds the explicit stability limit %.4g%s (%s); capped to %.4g",
+             format("%sdt %g exceeds the explicit stability limit %.4g%s (%s%s); capped to %.4g",
                     what.c_str(), double(segment.sessionDt), limit, steps.c_str(), st.basis.c_str(),
+                    raised.empty() ? "" : ("; param maps at their largest:" + raised).c_str(),
                     double(capped))});
         report.capped = true;
         return capped;
