@@ -668,9 +668,18 @@ endif()
 # Watercolour (issue 13): each preset renders with its strokes at a small size
 # (the strokes' steps are the preset's, so --steps is not cut); bad strokes
 # and the watercolour map on another model are refused with exit 2.
-foreach(p watercolour_wet_in_wet watercolour_dry_brush watercolour_painting)
+foreach(p watercolour_wet_in_wet watercolour_dry_brush watercolour_painting watercolour_drops)
   run(0 "" render --preset ${p} --size 32 --no-settle --backend cpu --out ${p}.png)
 endforeach()
+# Drops: --gravity is recorded; a bad value and gravity on a model are refused.
+run(0 "" render --preset watercolour_wet_in_wet --size 32 --no-settle --backend cpu --gravity 250:0.2 --dt 0.6 --out wc_g.png)
+file(READ "${WORK}/wc_g.json" wc_g)
+string(FIND "${wc_g}" "\"strength\": 0.2" at)
+if(at EQUAL -1)
+  message(SEND_ERROR "render --gravity: the session does not record it: ${wc_g}")
+endif()
+run(2 "gravity.strength" render --preset watercolour_drops --size 32 --gravity 270:-1 --out wc_g.png)
+run(2 "not supported yet" render --preset gs_coral --mesh sample:sphere --gravity 270:0.2 --out wc_g.png)
 file(WRITE "${WORK}/wc_bad.json" "{\"model\": \"watercolour\", \"size\": 16, \"steps\": 5, \"strokes\": [{\"points\": [[0.5, 0.5]], \"radius\": 0, \"water\": 1}]}")
 run(2 "strokes[0].radius" render --session wc_bad.json --out wc_bad.png)
 file(WRITE "${WORK}/wc_bad.json" "{\"model\": \"watercolour\", \"size\": 16, \"steps\": 5, \"strokes\": [{\"points\": [[0.5, 0.5]], \"radius\": 0.1, \"pigment\": \"p9\"}]}")
