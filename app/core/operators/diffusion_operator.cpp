@@ -8,6 +8,7 @@
 #include "core/numerics/kernel_symbol.hpp"
 #include "core/numerics/tensor_sequence.hpp"
 #include "core/operators/orientation_field.hpp"
+#include "core/operators/stability.hpp"
 #include "core/session/session.hpp"
 
 namespace morphogen {
@@ -139,20 +140,11 @@ void compileAnisotropic(const Session& session, DiffusionOperator& op) {
 void addGravity(const Session& session, DiffusionOperator& op) {
     using Form = DiffusionOperator::Form;
     if (op.form == Form::TensorMap)
-        throw InputError("\"gravity\" does not combine with a diffusion map (diffusion.map)");
+        throw InputError("\"gravity\" does not combine with a diffusion map (diffusion.map); use "
+                         "a constant tensor or isotropic diffusion");
     if (op.form == Form::Laplacian5 || op.form == Form::Laplacian9) {
-        for (int c = 0; c < op.chemicals; ++c) {
-            Kernel5 k;
-            if (op.form == Form::Laplacian5) {
-                k.at(-1, 0) = k.at(1, 0) = k.at(0, -1) = k.at(0, 1) = 1.0;
-                k.at(0, 0) = -4.0;
-            } else {
-                k.at(-1, 0) = k.at(1, 0) = k.at(0, -1) = k.at(0, 1) = 4.0 / 6.0;
-                k.at(-1, -1) = k.at(1, -1) = k.at(-1, 1) = k.at(1, 1) = 1.0 / 6.0;
-                k.at(0, 0) = -20.0 / 6.0;
-            }
-            op.kernels[std::size_t(c)] = k.scaled(op.rates[std::size_t(c)]);
-        }
+        for (int c = 0; c < op.chemicals; ++c)
+            op.kernels[std::size_t(c)] = operatorKernel(op, c);
         op.form = Form::Kernel3;
     }
     const ReactionModel& model = session.reactionModel();

@@ -45,9 +45,9 @@ Kernel5 operatorKernel(const DiffusionOperator& op, int chemical) {
 
 namespace {
 
-ExplicitStability gershgorinStability(const DiffusionOperator& op, const std::string& basis) {
+// A Gershgorin bound on |lambda| as the explicit limit dt <= 2 / bound.
+ExplicitStability gershgorinStability(double bound, const std::string& basis) {
     ExplicitStability result;
-    const double bound = diffusionSymbolBound(op);
     result.exact = false;
     result.basis = basis;
     result.spectralRadius = std::numeric_limits<double>::quiet_NaN();
@@ -62,14 +62,9 @@ ExplicitStability tensorAtlasStability(const AtlasWeights& weights,
     double worst = 0;
     for (const std::array<float, 3>& mix : mixes)
         worst = std::max(worst, maxTensorSum(weights, mix));
-    ExplicitStability result;
-    const double bound = 2.0 * worst;
-    result.exact = false;
-    result.basis = "Gershgorin bound on the weighted atlas domain with anisotropy (twice the "
-                   "largest sum of a texel's combined weights over the chemicals' tensors)";
-    result.spectralRadius = std::numeric_limits<double>::quiet_NaN();
-    result.maxStableDt = bound > 0 ? 2.0 / bound : std::numeric_limits<double>::infinity();
-    return result;
+    return gershgorinStability(
+        2.0 * worst, "Gershgorin bound on the weighted atlas domain with anisotropy (twice the "
+                     "largest sum of a texel's combined weights over the chemicals' tensors)");
 }
 
 ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& domain, double dt) {
@@ -80,18 +75,15 @@ ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& d
         double maxRate = 0;
         for (int c = 0; c < op.chemicals; ++c)
             maxRate = std::max(maxRate, double(op.rates[std::size_t(c)]));
-        ExplicitStability result;
-        const double bound = 2.0 * maxRate * double(maxCoefficientSum(*weights));
-        result.exact = false;
-        result.basis = "Gershgorin bound on the weighted atlas domain (largest rate times twice "
-                       "the largest sum of a texel's four weights; an atlas has no Fourier modes)";
-        result.spectralRadius = std::numeric_limits<double>::quiet_NaN();
-        result.maxStableDt = bound > 0 ? 2.0 / bound : std::numeric_limits<double>::infinity();
-        return result;
+        return gershgorinStability(
+            2.0 * maxRate * double(maxCoefficientSum(*weights)),
+            "Gershgorin bound on the weighted atlas domain (largest rate times twice the largest "
+            "sum of a texel's four weights; an atlas has no Fourier modes)");
     }
     if (domain.kind() == DomainKind::Atlas)
-        return gershgorinStability(op, "Gershgorin bound on the atlas domain (largest rate times "
-                                       "the stencil's bound; an atlas has no Fourier modes)");
+        return gershgorinStability(diffusionSymbolBound(op),
+                                   "Gershgorin bound on the atlas domain (largest rate times "
+                                   "the stencil's bound; an atlas has no Fourier modes)");
     return explicitStability(op, domain.tileWidth(), domain.tileHeight(), dt);
 }
 

@@ -709,9 +709,6 @@ void validateSession(const Session& s, const std::string& source) {
     if (s.gravity.active() && s.surface.active())
         throw InputError(source + ": \"gravity\" runs drops down a flat canvas; on a model "
                                   "(\"surface\") it is not supported yet: leave out one of them");
-    if (s.gravity.active() && s.diffusion.map)
-        throw InputError(source + ": \"gravity\" does not combine with a diffusion map "
-                                  "(diffusion.map); use a constant tensor or isotropic diffusion");
     if (!s.schedule.empty() && !s.stages.empty())
         throw InputError(source + ": a coarse-to-fine \"schedule\" does not combine with "
                                   "cascade \"stages\": give one of them");
