@@ -121,12 +121,18 @@ void PaddedAtlasStep::store(int tile, State& state) const {
                         state.plane(c) + m_atlas.tileCell(tile, 0, v));
 }
 
-void PaddedAtlasStep::fillHalo(int tile, const std::array<float*, kMaxChemicals>& planes) const {
+void PaddedAtlasStep::fillHalos(int first, int end,
+                                const std::array<float*, kMaxChemicals>& planes) const {
     const std::size_t halo = 4 * std::size_t(m_n + 1);
-    for (std::size_t i = halo * std::size_t(tile); i < halo * std::size_t(tile + 1); ++i) {
-        const std::uint32_t to = m_haloTo[i], from = m_haloFrom[i];
-        for (int c : m_diffusing)
-            planes[std::size_t(c)][to] = planes[std::size_t(c)][from];
+    const std::uint32_t* to = m_haloTo.data() + halo * std::size_t(first);
+    const std::uint32_t* from = m_haloFrom.data() + halo * std::size_t(first);
+    const std::size_t count = halo * std::size_t(end - first);
+    for (int c : m_diffusing) {
+        float* plane = planes[std::size_t(c)];
+        // Halo cells and their sources (tile texels) are disjoint sets.
+#pragma omp simd
+        for (std::size_t i = 0; i < count; ++i)
+            plane[to[i]] = plane[from[i]];
     }
 }
 
@@ -144,8 +150,7 @@ void PaddedAtlasStep::step(StepTileKernel kernel, bool all,
 #pragma omp parallel for schedule(static) if (threaded)
         for (int r = 0; r < m_tileRows; ++r) {
             const FlushDenormals flush;
-            for (int t = r * tpr; t < std::min((r + 1) * tpr, tiles); ++t)
-                fillHalo(t, planes);
+            fillHalos(r * tpr, std::min((r + 1) * tpr, tiles), planes);
             // Whole rows (the halo columns between tiles too, unread): one
             // long vector loop per row rather than one per tile.
             kernel(m_k, m_in, m_out, r * m_padded + 1, r * m_padded + 1 + m_n, 1, last);
@@ -156,8 +161,7 @@ void PaddedAtlasStep::step(StepTileKernel kernel, bool all,
         for (int i = 0; i < count; ++i) {
             const FlushDenormals flush;
             const TileRun& run = m_runs[std::size_t(i)];
-            for (int t = run.first; t < run.end; ++t)
-                fillHalo(t, planes);
+            fillHalos(run.first, run.end, planes);
             const int x0 = (run.first % tpr) * m_padded + 1, y0 = (run.first / tpr) * m_padded + 1;
             const int x1 = ((run.end - 1) % tpr) * m_padded + 1 + m_n;
             kernel(m_k, m_in, m_out, y0, y0 + m_n, x0, x1);

@@ -55,7 +55,8 @@ private:
     // Copies tiles' texels from the atlas into `to`, or from m_in to the atlas.
     void load(const State& state, State& to) const;
     void store(int tile, State& state) const;
-    void fillHalo(int tile, const std::array<float*, kMaxChemicals>& planes) const;
+    // Fills the halos of tiles [first, end).
+    void fillHalos(int first, int end, const std::array<float*, kMaxChemicals>& planes) const;
     // One step of every tile (all) or of m_runs.
     void step(StepTileKernel kernel, bool all, const std::vector<std::uint32_t>& frozen,
               bool threaded);
