@@ -191,6 +191,13 @@ GpuSimulator::GpuSimulator(const Session& session)
                 m_cross = Texture2D(atlas->width(), atlas->height(), GL_RGBA32F);
                 m_cross.uploadRgba(diagonalTexels(*weights));
             }
+            if (m_k.drifting()) {
+                m_drift[0] = Texture2D(atlas->width(), atlas->height(), GL_RGBA32F);
+                m_drift[0].uploadRgba(driftInflowTexels(*weights));
+                m_drift[1] = Texture2D(atlas->width(), atlas->height(), GL_R32F);
+                const std::vector<float> outflow = driftOutflowTexels(*weights);
+                m_drift[1].uploadRows(0, atlas->height(), outflow.data());
+            }
             if (m_k.tensorWeighted()) {
                 const std::array<std::vector<float>, 4> texels = tensorTexels(*weights->tensor);
                 for (std::size_t i = 0; i < 4; ++i) {
@@ -280,6 +287,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         defines.push_back("ATLAS_CROSS");
     if (m_k.tensorWeighted())
         defines.push_back("ATLAS_TENSOR");
+    if (m_k.drifting())
+        defines.push_back("ATLAS_DRIFT");
     if (pass)
         defines.push_back(pass);
     if (!m_frozenMask.empty())
@@ -306,6 +315,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         glUniform1i(program.uniform("uCross"), kCrossUnit);
         for (int i = 0; i < 4; ++i)
             glUniform1i(program.uniform(("uTensor" + std::to_string(i)).c_str()), kTensorUnits[i]);
+        glUniform1i(program.uniform("uDriftIn"), kDriftUnits[0]);
+        glUniform1i(program.uniform("uDriftOut"), kDriftUnits[1]);
         glUniform3i(program.uniform("uAtlas"), atlas->tileSize(), atlas->tilesPerRow(),
                     atlas->tileCount());
     }
@@ -334,6 +345,9 @@ void GpuSimulator::bindAuxiliaryTextures() const {
     for (int i = 0; i < 4; ++i)
         if (m_tensor[i].id())
             m_tensor[i].bind(kTensorUnits[i]);
+    for (int i = 0; i < 2; ++i)
+        if (m_drift[i].id())
+            m_drift[i].bind(kDriftUnits[i]);
     for (int order = 0; order < 2; ++order)
         if (m_diagonals[order].id())
             m_diagonals[order].bind(kDiagonalUnits[order]);
@@ -501,6 +515,8 @@ void GpuSimulator::setLiveUniforms(const Program& program) const {
         setChemicalVec4s(program.uniform("uMapDc"), dc, textures);
         setChemicalVec4s(program.uniform("uMapDs"), ds, textures);
     }
+    if (m_k.drifting())
+        setChemicalVec4s(program.uniform("uDrifts"), m_k.drifts, textures);
     if (m_k.tensorWeighted()) {
         std::array<std::array<float, kMaxChemicals>, 3> mix{};
         for (int c = 0; c < op.chemicals; ++c)

@@ -24,6 +24,9 @@ constexpr int kCrossUnit = 14; // weights with diagonals: 4 diagonal coefficient
 // atlas never has (StepConstants refuses both there), so the step program stays
 // within OpenGL 3.3's 16 units.
 constexpr int kTensorUnits[] = {1, 2, 7, 8};
+// Drops on a model (AtlasDrift: inflow RGBA32F, outflow R32F): the last free
+// unit and the diffusion map's (StepConstants refuses drift with anisotropy).
+constexpr int kDriftUnits[] = {15, 1};
 
 // Two sets of `count` same-size float textures, each set behind one
 // framebuffer (multiple render targets); each pass samples the current set
@@ -133,6 +136,7 @@ private:
     Texture2D m_weights;      // weighted atlases: +x, +y, -x, -y coefficients per texel
     Texture2D m_cross;        // weights with diagonals: their 4 coefficients per texel
     Texture2D m_tensor[4];    // anisotropy: AtlasTensorWeights as tensorTexels
+    Texture2D m_drift[2];     // drops on a model: AtlasDrift's inflow and outflow
     std::vector<std::uint8_t> m_frozenMask;
     Program m_brushProgram; // built on the first chemical brush
     // Localized runs: the active tiles' rectangles (runs of consecutive tiles

@@ -31,6 +31,11 @@
 // hold the two tensor operators' links and diagonals (AtlasTensorWeights),
 // summed as the weights are, and chemical i's term is
 // (uMixP S + uMixQ1 L1) + uMixQ2 L2 (StepConstants::tensorMixes, rates included).
+// ATLAS_DRIFT (with ATLAS_WEIGHTS) adds water drops running down a model
+// (AtlasDrift): uDriftIn (RGBA32F: the +x, +y, -x, -y inflow coefficients),
+// uDriftOut (R32F: the outflow), and chemical i's term gains uDrifts[i] (1 or
+// 0) times ((in-x l + in+x r) + in-y d) + in+y u - out c, after its diffusion,
+// in the CPU's order (StepConstants::driftPlanes).
 // The integrator is a second variant: (none) explicit Euler; RHS_PASS and
 // JACOBI_PASS the two passes of a semi-implicit step.
 // react() comes from the model's snippet, compiled in front of this file.
@@ -136,6 +141,11 @@ uniform sampler2D uTensor3; // L2's diagonals
 uniform vec4 uMixP[STATE_TEXTURES];
 uniform vec4 uMixQ1[STATE_TEXTURES];
 uniform vec4 uMixQ2[STATE_TEXTURES];
+#endif
+#ifdef ATLAS_DRIFT
+uniform sampler2D uDriftIn;
+uniform sampler2D uDriftOut;
+uniform vec4 uDrifts[STATE_TEXTURES];
 #endif
 bool gAtlasBorder;    // this fragment's texel is on its tile's border ring
 ivec2 unpackTexel(uint address) {
@@ -272,6 +282,11 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
     return uDiffusion[t] * ((4.0 * sides + corners - 20.0 * c) * (1.0 / 6.0));
 #elif defined(ATLAS_TENSOR)
     return (uMixP[t] * (sides - wsum * c) + uMixQ1[t] * tensorTerm[0]) + uMixQ2[t] * tensorTerm[1];
+#elif defined(ATLAS_DRIFT)
+    vec4 din = texelFetch(uDriftIn, ivec2(gl_FragCoord.xy), 0);
+    float dout = texelFetch(uDriftOut, ivec2(gl_FragCoord.xy), 0).x;
+    vec4 drift = (((din.z * l + din.x * r) + din.w * d) + din.y * u) - dout * c;
+    return uDiffusion[t] * (sides - wsum * c) + uDrifts[t] * drift;
 #elif defined(ATLAS_WEIGHTS)
     return uDiffusion[t] * (sides - wsum * c);
 #else

@@ -236,8 +236,6 @@ TEST(Gravity, SessionsRecordGravityAndRefuseBadValues) {
     refused(j, "gravity.angle");
     j["gravity"] = {{"speed", 1}};
     refused(j, "gravity.speed");
-    j["gravity"] = {{"strength", 0.2}};
-    j["surface"] = {{"mesh", "sample:sphere"}};
-    j.erase("strokes");
-    refused(j, "not supported yet");
+    j["gravity"] = {{"strength", 0.2}, {"direction", {0, 0, 0}}};
+    refused(j, "gravity.direction");
 }

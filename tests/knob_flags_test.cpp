@@ -403,4 +403,20 @@ TEST(KnobFlags, GravityIsTheJsonBlock) {
     EXPECT_TRUE(contains(negative, "gravity.strength")) << negative;
     f.gravity = "400:1";
     EXPECT_TRUE(contains(errorFor("watercolour_drops", f), "gravity.angle"));
+
+    // --gravity-direction X,Y,Z: the block's direction (on a model), strength kept.
+    KnobFlags d;
+    d.gravityDirection = "1,-2,0.5";
+    Session drops = loadPreset("watercolour_drops");
+    applyKnobFlags(d, drops);
+    EXPECT_EQ(drops.gravity.direction, (std::array<double, 3>{1, -2, 0.5}));
+    EXPECT_EQ(drops.gravity.strength, loadPreset("watercolour_drops").gravity.strength);
+    d.gravityDirection = "0,-1";
+    EXPECT_TRUE(contains(errorFor("watercolour_drops", d), "is not X,Y,Z"));
+    d.gravityDirection = "0,0,0";
+    const std::string zero = errorFor("watercolour_drops", d);
+    EXPECT_TRUE(contains(zero, "--gravity-direction")) << zero;
+    EXPECT_TRUE(contains(zero, "gravity.direction")) << zero;
+    d.gravityDirection = "0,down,0";
+    EXPECT_TRUE(contains(errorFor("watercolour_drops", d), "'down' is not a number"));
 }

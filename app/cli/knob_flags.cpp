@@ -447,6 +447,18 @@ std::vector<std::string> applyKnobFlags(const KnobFlags& flags, Session& session
     if (!flags.gravity.empty())
         session.gravity = gravityFromJson(FieldReader(json::object(), "--gravity", ""),
                                           gravityFlagJson(flags.gravity));
+    if (!flags.gravityDirection.empty()) {
+        const std::vector<std::string> parts = split(flags.gravityDirection, ',');
+        if (parts.size() != 3)
+            throw InputError("--gravity-direction: '" + flags.gravityDirection +
+                             "' is not X,Y,Z (gravity in the mesh's object space, e.g. 0,-1,0)");
+        json block = gravityToJson(session.gravity);
+        block["direction"] = json::array();
+        for (const std::string& p : parts)
+            block["direction"].push_back(numberJson("--gravity-direction", p));
+        session.gravity =
+            gravityFromJson(FieldReader(json::object(), "--gravity-direction", ""), block);
+    }
     return notes;
 }
 
@@ -518,6 +530,12 @@ void addKnobFlags(CLI::App& cmd, KnobFlags& f) {
                    "units per unit time towards ANGLE (degrees counter-clockwise from +x; 270 "
                    "runs down the page), e.g. 270:0.5 for drops; off removes a session's")
         ->type_name("ANGLE:STRENGTH")
+        ->group("Gravity (JSON \"gravity\")");
+    cmd.add_option("--gravity-direction", f.gravityDirection,
+                   "on a model (--mesh): gravity's direction in the mesh's object space (default "
+                   "0,-1,0: down the model); drops run along its projection on the surface at "
+                   "--gravity's STRENGTH")
+        ->type_name("X,Y,Z")
         ->group("Gravity (JSON \"gravity\")");
 }
 

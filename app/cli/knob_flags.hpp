@@ -33,6 +33,7 @@ struct KnobFlags {
     std::vector<std::string> initNoise;   // --init-noise CHEM=V,...
     std::vector<std::string> initInside;  // --init-inside CHEM=V,...
     std::string gravity;                  // --gravity ANGLE:STRENGTH, or off
+    std::string gravityDirection;         // --gravity-direction X,Y,Z (on a model)
 };
 
 // The rate ratio (along / across) --theta and --orientation give a session

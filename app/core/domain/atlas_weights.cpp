@@ -20,6 +20,12 @@ void checkAtlasWeightSizes(const Atlas& atlas, const AtlasWeights& weights) {
                                  std::to_string(f.diagonals.size()) +
                                  " anisotropic link and diagonal entries for an atlas of " +
                                  std::to_string(cells) + " cells (accepted: one per atlas cell)");
+    if (weights.drift &&
+        (weights.drift->inflow.size() != cells || weights.drift->outflow.size() != cells))
+        throw InputError("atlas weights: " + std::to_string(weights.drift->inflow.size()) +
+                         " and " + std::to_string(weights.drift->outflow.size()) +
+                         " drift inflow and outflow entries for an atlas of " +
+                         std::to_string(cells) + " cells (accepted: one per atlas cell)");
     if (weights.hasDiagonals() && weights.diagonal.size() != cells)
         throw InputError("atlas weights: " + std::to_string(weights.diagonal.size()) +
                          " diagonal entries for an atlas of " + std::to_string(cells) +
@@ -34,6 +40,16 @@ void checkAtlasWeightSizes(const Atlas& atlas, const AtlasWeights& weights) {
 
 void checkAtlasWeights(const Atlas& atlas, const AtlasWeights& weights) {
     checkAtlasWeightSizes(atlas, weights);
+    if (weights.drift)
+        for (std::size_t i = 0; i < atlas.cellCount(); ++i) {
+            const auto& in = weights.drift->inflow[i];
+            const float out = weights.drift->outflow[i];
+            const auto bad = [](float v) { return !std::isfinite(v) || v < 0.0f; };
+            if (bad(in[0]) || bad(in[1]) || bad(in[2]) || bad(in[3]) || bad(out))
+                throw InputError("atlas weights: cell " + std::to_string(i) +
+                                 " has a negative or non-finite drift coefficient (accepted: "
+                                 "finite values >= 0)");
+        }
     const std::vector<std::array<std::uint32_t, 8>> d =
         weights.tensor || weights.hasDiagonals() ? atlasDiagonals(atlas)
                                                  : std::vector<std::array<std::uint32_t, 8>>();
@@ -100,6 +116,18 @@ float maxCoefficientSum(const AtlasWeights& weights) {
             sum += (std::abs(k[0]) + std::abs(k[1])) + (std::abs(k[2]) + std::abs(k[3]));
         }
         worst = std::max(worst, sum);
+    }
+    return worst;
+}
+
+double maxDriftSum(const AtlasWeights& weights) {
+    double worst = 0;
+    if (!weights.drift)
+        return worst;
+    for (std::size_t i = 0; i < weights.drift->outflow.size(); ++i) {
+        const auto& in = weights.drift->inflow[i];
+        worst = std::max(worst, double(weights.drift->outflow[i]) + double(in[0]) + double(in[1]) +
+                                    double(in[2]) + double(in[3]));
     }
     return worst;
 }
@@ -207,6 +235,33 @@ std::vector<float> diagonalTexels(const AtlasWeights& weights) {
         std::copy(weights.diagonal[i].begin(), weights.diagonal[i].end(),
                   texels.begin() + std::ptrdiff_t(4 * i));
     return texels;
+}
+
+std::vector<float> driftPlanes(const AtlasWeights& weights) {
+    if (!weights.drift)
+        return {};
+    const std::size_t cells = weights.drift->outflow.size();
+    std::vector<float> planes(5 * cells);
+    for (std::size_t i = 0; i < cells; ++i) {
+        for (std::size_t d = 0; d < 4; ++d)
+            planes[d * cells + i] = weights.drift->inflow[i][d];
+        planes[4 * cells + i] = weights.drift->outflow[i];
+    }
+    return planes;
+}
+
+std::vector<float> driftInflowTexels(const AtlasWeights& weights) {
+    if (!weights.drift)
+        return {};
+    std::vector<float> texels(4 * weights.drift->inflow.size());
+    for (std::size_t i = 0; i < weights.drift->inflow.size(); ++i)
+        std::copy(weights.drift->inflow[i].begin(), weights.drift->inflow[i].end(),
+                  texels.begin() + std::ptrdiff_t(4 * i));
+    return texels;
+}
+
+std::vector<float> driftOutflowTexels(const AtlasWeights& weights) {
+    return weights.drift ? weights.drift->outflow : std::vector<float>();
 }
 
 } // namespace morphogen

@@ -35,12 +35,14 @@ class Atlas;
 // Optionally, for anisotropic diffusion on a surface, `tensor`: the operators
 // div(Q grad u) of two traceless tangent tensor fields (AtlasTensorWeights).
 struct AtlasTensorWeights;
+struct AtlasDrift;
 struct AtlasWeights {
     std::vector<std::array<float, 4>> coefficients; // per atlas cell; 0 for unused cells
     std::vector<float> area;                        // per atlas cell, units^2; 0 for unused cells
     // Empty (the 5-point stencil) or per atlas cell; 0 for unused cells.
     std::vector<std::array<float, 4>> diagonal;
     std::shared_ptr<const AtlasTensorWeights> tensor; // null: isotropic only
+    std::shared_ptr<const AtlasDrift> drift;          // null: no gravity
 
     bool hasDiagonals() const { return !diagonal.empty(); }
 };
@@ -64,6 +66,28 @@ struct AtlasTensorWeights {
     };
     std::array<Field, 2> field;
 };
+
+// Water drops running downhill on a surface (Lo et al. section 5.6; built by
+// core/surface/surface_drift.hpp): a first-order upwind drift along the four
+// links, the same for every chemical that diffuses, added to its diffusion:
+//
+//     drift(u)_i = sum over d of inflow[i][d] * u[neighbour(i, d)] - outflow[i] * u[i]
+//
+// per unit time, d in Direction order. Texel j passes the fraction a_jd per unit
+// time of its amount across its link d (outflow[j] = sum_d a_jd); what reaches
+// i arrives per i's area: inflow[i][d] = area[j] a_j,back / area[i]. So drift
+// conserves sum(area u), like the weights, and keeps every value >= 0 (upwind)
+// while dt * outflow <= 1. Unlike the weights, inflow is not outflow's mirror:
+// where the flow converges (the bottom of a sphere) a texel gains more than it
+// loses.
+struct AtlasDrift {
+    std::vector<std::array<float, 4>> inflow; // per atlas cell
+    std::vector<float> outflow;               // per atlas cell
+};
+
+// The largest texel sum of the drift's outflow and inflow coefficients: its
+// part of a texel's Gershgorin bound (0 without drift).
+double maxDriftSum(const AtlasWeights& weights);
 
 // Throws InputError unless `weights` fits `atlas`: one entry per atlas cell in
 // both vectors (and in `diagonal` unless it is empty), every coefficient and
@@ -122,6 +146,13 @@ std::vector<float> coefficientTexels(const AtlasWeights& weights);
 // weights have no diagonals.
 std::vector<float> diagonalPlanes(const AtlasWeights& weights);
 std::vector<float> diagonalTexels(const AtlasWeights& weights);
+
+// The drift as five planes (inflow +x, +y, -x, -y, then outflow; as
+// coefficientPlanes), and as the GPU's textures: inflow RGBA per texel, outflow
+// one float per texel. Empty without drift.
+std::vector<float> driftPlanes(const AtlasWeights& weights);
+std::vector<float> driftInflowTexels(const AtlasWeights& weights);
+std::vector<float> driftOutflowTexels(const AtlasWeights& weights);
 
 // The tensor weights as 16 planes: L1's four links, L1's four diagonals, then
 // L2's (as coefficientPlanes); and as four RGBA textures' texels in that order.

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/base/errors.hpp"
+#include "core/domain/atlas_weights.hpp"
 #include "core/io/image_io.hpp"
 #include "core/numerics/kernel_symbol.hpp"
 #include "core/numerics/tensor_sequence.hpp"
@@ -179,8 +180,13 @@ DiffusionOperator compileDiffusion(const Session& session) {
         compileAnisotropic(session, op);
         break;
     }
-    if (session.gravity.active())
+    // On a model the drift is part of the surface's weights (AtlasWeights::drift).
+    if (session.gravity.active() && !session.atlas)
         addGravity(session, op);
+    if (session.gravity.active() && session.atlas &&
+        !(session.atlasWeights && session.atlasWeights->drift))
+        throw InputError("\"gravity\" on an atlas needs the surface's drift weights (a session "
+                         "on a mesh); this atlas has none");
     return op;
 }
 

@@ -63,8 +63,12 @@ ExplicitStability tensorAtlasStability(const AtlasWeights& weights,
     for (const std::array<float, 3>& mix : mixes)
         worst = std::max(worst, maxTensorSum(weights, mix));
     return gershgorinStability(
-        2.0 * worst, "Gershgorin bound on the weighted atlas domain with anisotropy (twice the "
-                     "largest sum of a texel's combined weights over the chemicals' tensors)");
+        2.0 * worst + maxDriftSum(weights),
+        weights.drift ? "Gershgorin bound on the weighted atlas domain with anisotropy and gravity "
+                        "(twice the largest sum of a texel's combined weights over the chemicals' "
+                        "tensors, plus the largest sum of its drift coefficients)"
+                      : "Gershgorin bound on the weighted atlas domain with anisotropy (twice the "
+                        "largest sum of a texel's combined weights over the chemicals' tensors)");
 }
 
 ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& domain, double dt) {
@@ -75,6 +79,13 @@ ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& d
         double maxRate = 0;
         for (int c = 0; c < op.chemicals; ++c)
             maxRate = std::max(maxRate, double(op.rates[std::size_t(c)]));
+        // Drops' drift (AtlasWeights::drift) adds its outflow and inflow to a row.
+        if (weights->drift)
+            return gershgorinStability(
+                2.0 * maxRate * double(maxCoefficientSum(*weights)) + maxDriftSum(*weights),
+                "Gershgorin bound on the weighted atlas domain with gravity (largest rate times "
+                "twice the largest sum of a texel's four weights, plus the largest sum of its "
+                "drift coefficients)");
         return gershgorinStability(
             2.0 * maxRate * double(maxCoefficientSum(*weights)),
             "Gershgorin bound on the weighted atlas domain (largest rate times twice the largest "

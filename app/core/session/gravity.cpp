@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/base/errors.hpp"
 #include "core/base/json_fields.hpp"
 #include "core/numerics/kernel.hpp"
 
@@ -12,15 +13,50 @@ namespace morphogen {
 
 Gravity gravityFromJson(const FieldReader& top, const nlohmann::json& block) {
     FieldReader reader(block, top.source(), "gravity");
-    reader.rejectUnknown({"angle", "strength"});
+    reader.rejectUnknown({"angle", "strength", "direction"});
     Gravity g;
     g.angle = reader.number("angle", g.angle, -360.0, 360.0);
     g.strength = reader.number("strength", g.strength, 0.0, kMaxGravityStrength);
+    if (const nlohmann::json* d = reader.find("direction")) {
+        const auto bad = [&](const std::string& got) {
+            reader.failField("direction", "must be three numbers [x, y, z] in the mesh's object "
+                                          "space, not all zero (e.g. [0, -1, 0]), got " +
+                                              got);
+        };
+        if (!d->is_array() || d->size() != 3)
+            bad(d->dump());
+        for (std::size_t i = 0; i < 3; ++i) {
+            if (!(*d)[i].is_number())
+                bad(d->dump());
+            g.direction[i] = (*d)[i].get<double>();
+        }
+        try {
+            checkGravityDirection(g.direction, "direction");
+        } catch (const InputError&) {
+            bad(d->dump());
+        }
+    }
     return g;
 }
 
 nlohmann::json gravityToJson(const Gravity& gravity) {
-    return {{"angle", gravity.angle}, {"strength", gravity.strength}};
+    nlohmann::json j = {{"angle", gravity.angle}, {"strength", gravity.strength}};
+    if (gravity.direction != Gravity{}.direction)
+        j["direction"] = gravity.direction;
+    return j;
+}
+
+void checkGravityDirection(const std::array<double, 3>& direction, const std::string& what) {
+    double length2 = 0;
+    for (double v : direction) {
+        if (!std::isfinite(v) || std::fabs(v) > 1e6)
+            throw InputError("gravity " + what +
+                             ": components must be finite numbers up to 1e6 "
+                             "in size");
+        length2 += v * v;
+    }
+    if (!(length2 > 1e-12))
+        throw InputError("gravity " + what + ": must not be zero (e.g. 0,-1,0: down the model)");
 }
 
 void addGravityDrift(Kernel5& kernel, const Gravity& gravity, double cellSize) {

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <array>
+#include <string>
+
 #include <nlohmann/json_fwd.hpp>
 
 namespace morphogen {
@@ -18,24 +21,35 @@ struct Kernel5;
 // extrema) and conserves the total (on a periodic canvas; on a clamped one
 // what reaches the downhill edge runs off). Lo biases the diffusion between
 // neighbours by g . v_ij; this is that bias as a first-order upwind flux.
+// On a model (a session with a surface) `direction` is gravity in the mesh's
+// object space instead (glTF's y up: (0, -1, 0) falls down the model); its
+// length does not matter. The drift is then g's projection on the surface at
+// `strength` (core/surface/surface_drift.hpp).
 struct Gravity {
     double angle = 270.0;
     double strength = 0.0; // 0: off
+    std::array<double, 3> direction = {0.0, -1.0, 0.0};
     bool active() const { return strength > 0.0; }
-    bool operator==(const Gravity& o) const { return angle == o.angle && strength == o.strength; }
+    bool operator==(const Gravity& o) const {
+        return angle == o.angle && strength == o.strength && direction == o.direction;
+    }
     bool operator!=(const Gravity& o) const { return !(*this == o); }
 };
 
 // Largest drift accepted, model units per unit time.
 constexpr double kMaxGravityStrength = 100.0;
 
-// The "gravity" block of a session: {"angle": degrees, "strength": speed};
-// errors name the field and what is accepted.
+// The "gravity" block of a session: {"angle": degrees, "strength": speed,
+// "direction": [x, y, z]} (a non-zero finite vector); errors name the field and
+// what is accepted.
 Gravity gravityFromJson(const FieldReader& top, const nlohmann::json& block);
 nlohmann::json gravityToJson(const Gravity& gravity);
 
 // Adds the drift of `gravity` on a grid of cells `cellSize` units wide to a
 // chemical's 3x3 or 5x5 kernel (grid coordinates, rows growing down the image).
 void addGravityDrift(Kernel5& kernel, const Gravity& gravity, double cellSize);
+
+// Throws InputError naming `what` unless `direction` is finite and not zero.
+void checkGravityDirection(const std::array<double, 3>& direction, const std::string& what);
 
 } // namespace morphogen

@@ -706,9 +706,6 @@ void validateSession(const Session& s, const std::string& source) {
     if (s.relaxationPasses < 1 || s.relaxationPasses > kMaxRelaxationPasses)
         throw InputError(source + ": relaxation passes is " + std::to_string(s.relaxationPasses) +
                          ", accepted range is [1, " + std::to_string(kMaxRelaxationPasses) + "]");
-    if (s.gravity.active() && s.surface.active())
-        throw InputError(source + ": \"gravity\" runs drops down a flat canvas; on a model "
-                                  "(\"surface\") it is not supported yet: leave out one of them");
     if (!s.schedule.empty() && !s.stages.empty())
         throw InputError(source + ": a coarse-to-fine \"schedule\" does not combine with "
                                   "cascade \"stages\": give one of them");

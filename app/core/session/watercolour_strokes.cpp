@@ -1,6 +1,7 @@
 #include "core/session/watercolour_strokes.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <nlohmann/json.hpp>
 
@@ -51,16 +52,35 @@ void addWatercolourStrokes(const FieldReader& top, const json& array, Session& s
     std::vector<LiveEdit> added;
     for (std::size_t i = 0; i < array.size(); ++i) {
         FieldReader reader(array[i], top.source(), "strokes[" + std::to_string(i) + "]");
-        reader.rejectUnknown({"step", "points", "radius", "water", "pigment", "amount", "falloff"});
+        reader.rejectUnknown(
+            {"step", "points", "radius", "water", "pigment", "amount", "falloff", "space"});
         StrokeSpec stroke;
         stroke.mode = BrushMode::Add;
         const long long step = reader.integer("step", 0, 0, kMaxSteps);
+        const std::string space = reader.string("space", "canvas");
+        if (space != "canvas" && space != "surface")
+            reader.failField("space", "is '" + space +
+                                          "', accepted: canvas, surface (a model's "
+                                          "surface, points in the mesh's coordinates)");
+        stroke.surface = space == "surface";
         const json* points = reader.find("points");
         const std::string expected =
-            "must be a non-empty array of [x, y] points on the canvas (fractions 0..1)";
+            stroke.surface
+                ? "must be a non-empty array of [x, y, z] points on the mesh (its coordinates)"
+                : "must be a non-empty array of [x, y] points on the canvas (fractions 0..1)";
         if (!points || !points->is_array() || points->empty() || points->size() > kMaxStrokePoints)
             reader.failField("points", expected);
         for (const json& p : *points) {
+            if (stroke.surface) {
+                bool ok = p.is_array() && p.size() == 3;
+                for (std::size_t k = 0; ok && k < 3; ++k)
+                    ok = p[k].is_number() && std::abs(p[k].get<double>()) <= kMaxLength;
+                if (!ok)
+                    reader.failField("points", expected + ", got " + p.dump());
+                stroke.surfacePoints.push_back(
+                    {p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
+                continue;
+            }
             const bool ok = p.is_array() && p.size() == 2 && p[0].is_number() && p[1].is_number() &&
                             p[0].get<double>() >= 0.0 && p[0].get<double>() <= 1.0 &&
                             p[1].get<double>() >= 0.0 && p[1].get<double>() <= 1.0;
@@ -69,12 +89,14 @@ void addWatercolourStrokes(const FieldReader& top, const json& array, Session& s
                                                (p.is_array() ? " (outside the canvas)" : ""));
             stroke.points.push_back({p[0].get<double>(), p[1].get<double>()});
         }
+        const double maxRadius = stroke.surface ? kMaxLength : 1.0;
+        const std::string units =
+            stroke.surface ? "the mesh's units" : "a fraction of the canvas width, (0, 1]";
         if (!reader.find("radius"))
-            reader.failField("radius", "is missing (a fraction of the canvas width, (0, 1])");
-        stroke.radius = reader.number("radius", 0.0, 0.0, 1.0);
+            reader.failField("radius", "is missing (" + units + ")");
+        stroke.radius = reader.number("radius", 0.0, 0.0, maxRadius);
         if (!(stroke.radius > 0.0))
-            reader.failField("radius", "is 0: a stroke needs a radius in (0, 1] (a fraction of "
-                                       "the canvas width)");
+            reader.failField("radius", "is 0: a stroke needs a radius > 0 (" + units + ")");
         stroke.falloff = reader.number("falloff", stroke.falloff, 0.0, 1.0);
         const double water = reader.number("water", 1.0, 0.0, kMaxWater);
         const double amount = reader.number("amount", 0.5, 0.0, kMaxWater);

@@ -19,6 +19,8 @@ struct Session;
 // fractions 0..1, radius a fraction of the width, as edits take them). More
 // water makes a wider, longer-lived wash, so it bleeds further. Any model
 // with a "w" chemical and pigment chemicals "p1", "p2", ... accepts them.
+// With "space": "surface" a stroke is on the session's model: points [x, y, z]
+// in the mesh's coordinates and the radius in its units (as surface edits).
 // Bad strokes are InputErrors naming "strokes[i].<field>": points outside
 // the canvas, a radius of 0, negative water or amount, an unknown pigment.
 // The expanded edits are merged into `session.edits` in step order (a

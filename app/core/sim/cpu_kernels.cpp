@@ -531,8 +531,8 @@ StepRowsKernel fusedExplicitStep(const ReactionModel& model, const StepConstants
 
 StepTileKernel fusedWeightedStep(const ReactionModel& model, const StepConstants& k) {
     // fromSession leaves only the 5-point form on a weighted atlas.
-    // Anisotropy's three operators per chemical go the generic path.
-    if (!k.weighted() || k.tensorWeighted() || !fusedParamsOk(k) ||
+    // Anisotropy's three operators per chemical, and the drift, go the generic path.
+    if (!k.weighted() || k.tensorWeighted() || k.drifting() || !fusedParamsOk(k) ||
         k.op.form != DiffusionOperator::Form::Laplacian5)
         return nullptr;
     return withCell<StepTileKernel>(model, [&](auto tag) -> StepTileKernel {

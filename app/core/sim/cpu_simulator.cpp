@@ -368,10 +368,57 @@ float CpuSimulator::atlasLaplacian(const float* plane, std::uint32_t cell, Stenc
 float CpuSimulator::atlasTerm(const float* plane, std::uint32_t cell, Stencil stencil,
                               int chemical) const {
     const float d = m_k.op.rates[std::size_t(chemical)];
-    if (d == 0.0f)
-        return 0.0f;
-    const float lap = atlasLaplacian(plane, cell, stencil, chemical);
-    return m_k.tensorWeighted() ? lap : d * lap;
+    float term = 0.0f;
+    if (d != 0.0f) {
+        const float lap = atlasLaplacian(plane, cell, stencil, chemical);
+        term = m_k.tensorWeighted() ? lap : d * lap;
+    }
+    const float drifts = m_k.drifts[std::size_t(chemical)];
+    if (m_k.drifting() && drifts != 0.0f)
+        term = term + drifts * driftAt(plane, cell);
+    return term;
+}
+
+float CpuSimulator::driftAt(const float* plane, std::uint32_t cell) const {
+    // addDriftRow's order: -x, +x, -y, +y, then the outflow.
+    const std::array<std::uint32_t, 4>& n = m_k.domain.atlasMap()->neighbours()[cell];
+    const std::size_t cells = m_current.cellCount();
+    const float* p = m_k.driftPlanes->data() + cell;
+    const float px = p[0], py = p[cells], mx = p[2 * cells], my = p[3 * cells], out = p[4 * cells];
+    return (((mx * plane[n[2]] + px * plane[n[0]]) + my * plane[n[3]]) + py * plane[n[1]]) -
+           out * plane[cell];
+}
+
+void CpuSimulator::addDriftRow(const float* plane, int y, int chemical, float* out) const {
+    const float drifts = m_k.drifts[std::size_t(chemical)];
+    if (!m_k.drifting() || drifts == 0.0f)
+        return;
+    const Atlas& atlas = *m_k.domain.atlasMap();
+    const int w = atlas.width(), h = atlas.height();
+    const std::size_t cells = atlas.cellCount(), start = std::size_t(y) * w;
+    const std::vector<std::uint32_t>& border = atlas.borderCells();
+    const std::size_t first = m_borderRows[std::size_t(y)], end = m_borderRows[std::size_t(y) + 1];
+    // The border texels' terms before the interior loop's (wrong) drift.
+    float kept[64];
+    std::vector<float> more;
+    float* before = end - first <= 64 ? kept : (more.resize(end - first), more.data());
+    for (std::size_t b = first; b < end; ++b)
+        before[b - first] = out[border[b] - start];
+    const float* up = plane + std::size_t(GridDomain::wrapOrClamp(y - 1, h, EdgeMode::Clamped)) * w;
+    const float* row = plane + start;
+    const float* down =
+        plane + std::size_t(GridDomain::wrapOrClamp(y + 1, h, EdgeMode::Clamped)) * w;
+    const float* p = m_k.driftPlanes->data() + start;
+    const float *px = p, *py = p + cells, *mx = p + 2 * cells, *my = p + 3 * cells;
+    const float* o = p + 4 * cells;
+    // Texels 0 and w - 1 are border or unused texels (unused ones are restored).
+#pragma omp simd
+    for (int x = 1; x < w - 1; ++x)
+        out[x] = out[x] + drifts * ((((mx[x] * row[x - 1] + px[x] * row[x + 1]) + my[x] * up[x]) +
+                                     py[x] * down[x]) -
+                                    o[x] * row[x]);
+    for (std::size_t b = first; b < end; ++b)
+        out[border[b] - start] = before[b - first] + drifts * driftAt(plane, border[b]);
 }
 
 void CpuSimulator::redoAtlasBorder() {
@@ -531,20 +578,27 @@ void CpuSimulator::diffusionRow(int c, const float* plane, int y, float* out) co
     case DiffusionOperator::Form::Laplacian5:
     case DiffusionOperator::Form::Laplacian9: {
         const float d = op.rates[std::size_t(c)];
-        if (d == 0.0f) {
-            std::fill(out, out + w, 0.0f);
+        if (domain.kind() == DomainKind::Atlas) {
+            if (d == 0.0f) {
+                std::fill(out, out + w, 0.0f);
+            } else {
+                atlasLaplacianRow(plane, y,
+                                  op.form == DiffusionOperator::Form::Laplacian5
+                                      ? Stencil::FivePoint
+                                      : Stencil::NinePoint,
+                                  c, out);
+                // With anisotropy the chemical's mix holds its rate.
+                if (!m_k.tensorWeighted()) {
+#pragma omp simd
+                    for (int x = 0; x < w; ++x)
+                        out[x] = d * out[x];
+                }
+            }
+            addDriftRow(plane, y, c, out);
             return;
         }
-        if (domain.kind() == DomainKind::Atlas) {
-            atlasLaplacianRow(plane, y,
-                              op.form == DiffusionOperator::Form::Laplacian5 ? Stencil::FivePoint
-                                                                             : Stencil::NinePoint,
-                              c, out);
-            if (m_k.tensorWeighted())
-                return; // the chemical's mix holds its rate
-#pragma omp simd
-            for (int x = 0; x < w; ++x)
-                out[x] = d * out[x];
+        if (d == 0.0f) {
+            std::fill(out, out + w, 0.0f);
             return;
         }
         const float* up = plane + std::size_t(domain.neighbourRow(y, -1)) * w;

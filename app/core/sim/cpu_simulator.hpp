@@ -107,8 +107,14 @@ private:
     // A weighted sum (four link planes, four diagonal planes or null) at one texel.
     float weightedAt(const float* links, const float* diagonals, const float* plane,
                      std::uint32_t cell) const;
-    // Chemical's diffusion term at one texel, its rate included (0 if it does not diffuse).
+    // Chemical's diffusion term at one texel, its rate included (0 if it does
+    // not diffuse), and its drift if it drifts.
     float atlasTerm(const float* plane, std::uint32_t cell, Stencil stencil, int chemical) const;
+    // The drift of water drops on a model (StepConstants::driftPlanes) at one
+    // texel through the index array, and added to a row of chemical's terms
+    // (interior texels by +-1 / +-width, border texels by the index array).
+    float driftAt(const float* plane, std::uint32_t cell) const;
+    void addDriftRow(const float* plane, int y, int chemical, float* out) const;
     // After a fused step over an unweighted atlas texture (a clamped grid to
     // the kernel): the explicit step of every tile-border texel again,
     // through the map.

@@ -79,6 +79,9 @@ int atlasSubsteps(const Session& session) {
                                 double(value->second));
     }
     ratio *= rateFactor;
+    // Drops' drift adds its Gershgorin share, dt * maxDriftSum / 2 of the
+    // explicit limit, to the diffusion's (which the session's dt keeps within 1).
+    ratio += double(session.dt) * maxDriftSum(weights) / 2.0;
     return ratio > 1.0 ? int(std::ceil(ratio - 1e-9)) : 1;
 }
 

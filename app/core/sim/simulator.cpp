@@ -212,6 +212,13 @@ StepConstants StepConstants::fromSession(const Session& session) {
     Session unitRates = session; // a mapped diffusion rate is compiled at rate 1
     loadVaryingParams(k, session, unitRates);
     k.op = compileDiffusion(unitRates);
+    // The backends scale a mapped rate's whole term, which would scale the drift too.
+    if (session.gravity.active())
+        for (int m : k.mappedRate)
+            if (m >= 0)
+                throw InputError("\"gravity\" does not combine with a param map of a diffusion "
+                                 "rate: drops would run at the map's speed; map another "
+                                 "parameter, or leave out one of them");
     k.integrator = session.integrator;
     k.relaxationPasses = session.relaxationPasses;
     if (const AtlasWeights* weights = k.domain.atlasWeights()) {
@@ -219,6 +226,16 @@ StepConstants StepConstants::fromSession(const Session& session) {
         if (weights->hasDiagonals())
             k.diagonalPlanes =
                 std::make_shared<const std::vector<float>>(morphogen::diagonalPlanes(*weights));
+        if (weights->drift) {
+            if (weights->tensor && k.op.form == DiffusionOperator::Form::Kernel3)
+                throw InputError("\"gravity\" on a model does not combine with anisotropic "
+                                 "diffusion yet; use isotropic diffusion for drops");
+            k.driftPlanes =
+                std::make_shared<const std::vector<float>>(morphogen::driftPlanes(*weights));
+            for (int c = 0; c < k.chemicals; ++c)
+                k.drifts[std::size_t(c)] =
+                    model.chemicals()[std::size_t(c)].diffusionParam.empty() ? 0.0f : 1.0f;
+        }
         if (weights->tensor && k.op.form == DiffusionOperator::Form::Kernel3)
             loadTensorMixes(k, session, *weights);
         // The weights are the stencil: their links (with their diagonals,

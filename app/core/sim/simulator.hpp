@@ -86,7 +86,16 @@ struct StepConstants {
     std::shared_ptr<const std::vector<float>> tensorPlanes;
     std::vector<std::array<float, 3>> tensorMixes;
 
+    // Water drops on a model (AtlasWeights::drift): its five planes (inflow
+    // +x, +y, -x, -y, outflow; driftPlanes in atlas_weights.hpp), else null.
+    // Chemical c drifts when drifts[c] is 1 (the model lets it diffuse): its
+    // term gains ((in_-x u_-x + in_+x u_+x) + in_-y u_-y) + in_+y u_+y - out u,
+    // added after the diffusion term, on both backends.
+    std::shared_ptr<const std::vector<float>> driftPlanes;
+    std::array<float, kMaxChemicals> drifts = {};
+
     bool weighted() const { return weightPlanes != nullptr; }
+    bool drifting() const { return driftPlanes != nullptr; }
     bool tensorWeighted() const { return tensorPlanes != nullptr; }
     bool crossWeighted() const { return diagonalPlanes != nullptr; }
     bool hasParamMaps() const { return !mappedParams.empty(); }

@@ -82,6 +82,7 @@ SurfaceSetup setUpSurface(Session& session,
     weights.crossTerm = spec.crossTerm;
     if (session.diffusion.type == DiffusionType::Anisotropic)
         weights.direction = spec.direction;
+    weights.gravity = session.gravity;
     if (spec.scaleBy == SurfaceScaleBy::MeanCurvature) {
         setup.featureScale = curvatureScale(setup.tiles, spec.scaleStrength);
         weights.featureScale = &setup.featureScale;

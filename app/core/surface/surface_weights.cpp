@@ -7,6 +7,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/limits.hpp"
 #include "core/domain/atlas_diagonals.hpp"
+#include "core/surface/surface_drift.hpp"
 #include "core/surface/surface_tensor.hpp"
 
 namespace morphogen {
@@ -267,6 +268,9 @@ AtlasWeights surfaceWeights(const SurfaceTiles& tiles, const SurfaceWeightOption
         w.coefficients = std::move(isotropicPart.links);
         w.diagonal = std::move(isotropicPart.diagonals);
     }
+    if (options.gravity.active())
+        w.drift = std::make_shared<const AtlasDrift>(
+            surfaceDrift(tiles, w, options.gravity.direction, options.gravity.strength, scale));
     return w;
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/domain/atlas_weights.hpp"
+#include "core/session/gravity.hpp"
 #include "core/session/surface_spec.hpp"
 #include "core/surface/surface_tiles.hpp"
 
@@ -26,6 +27,9 @@ struct SurfaceWeightOptions {
     // Set: the weights also carry the anisotropic part (AtlasWeights::tensor,
     // surfaceTensorWeights) for this direction field. Needs metricCorrection.
     std::optional<SurfaceDirection> direction;
+    // Active: the weights also carry the drift of water drops running down the
+    // surface (AtlasWeights::drift, surfaceDrift) for its direction and strength.
+    Gravity gravity;
 };
 
 // The guards against degenerate texels (see surfaceWeights): areas below
