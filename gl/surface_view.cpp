@@ -17,6 +17,7 @@ namespace {
 
 constexpr int kBaseColourUnit = 0;
 constexpr int kNormalMapUnit = 1;
+constexpr int kMetallicRoughnessUnit = 2;
 constexpr int kFloatsPerVertex = 12; // position 3, normal 3, uv 2, tangent 4
 constexpr int kMaxSide = 16384;
 constexpr double kPi = 3.14159265358979323846;
@@ -136,11 +137,21 @@ std::optional<Eigen::Vector3f> pickSurface(const TriangleMesh& mesh, const Bound
 void SurfaceRenderer::setTextures(const TexturedMesh& mesh) {
     m_baseColour = uploadImage(mesh.baseColour, "base colour texture");
     m_normalMap = uploadImage(mesh.normalMap, "normal map");
+    setMetallicRoughness(mesh);
+}
+
+void SurfaceRenderer::setMetallicRoughness(const TexturedMesh& mesh) {
+    // A dry mesh binds one dry texel: the program's sampler always has a texture.
+    m_wet = mesh.metallicRoughness.width > 0;
+    const RgbaImage dry{1, 1, {{255, std::uint8_t(std::lround(kDryRoughness * 255.0f)), 0, 255}}};
+    m_metallicRoughness =
+        uploadImage(m_wet ? mesh.metallicRoughness : dry, "metallic-roughness texture");
 }
 
 SurfaceRenderer::SurfaceRenderer(const TexturedMesh& mesh)
     : m_baseColour(uploadImage(mesh.baseColour, "base colour texture")),
       m_normalMap(uploadImage(mesh.normalMap, "normal map")) {
+    setMetallicRoughness(mesh);
     const std::size_t n = mesh.positions.size();
     if (mesh.normals.size() != n || mesh.tangents.size() != n || mesh.uvs.size() != n)
         throw std::invalid_argument("SurfaceRenderer: " + std::to_string(n) + " positions but " +
@@ -159,6 +170,7 @@ SurfaceRenderer::SurfaceRenderer(const TexturedMesh& mesh)
     m_program.use();
     glUniform1i(m_program.uniform("uBaseColour"), kBaseColourUnit);
     glUniform1i(m_program.uniform("uNormalMap"), kNormalMapUnit);
+    glUniform1i(m_program.uniform("uMetallicRoughness"), kMetallicRoughnessUnit);
 
     std::vector<float> interleaved;
     interleaved.reserve(n * kFloatsPerVertex);
@@ -237,6 +249,8 @@ SurfaceImage SurfaceRenderer::render(const ViewOptions& view) const {
     glUniform3fv(m_program.uniform("uLight"), 1, camera.light.data());
     m_baseColour.bind(kBaseColourUnit);
     m_normalMap.bind(kNormalMapUnit);
+    m_metallicRoughness.bind(kMetallicRoughnessUnit);
+    glUniform1i(m_program.uniform("uWet"), m_wet ? 1 : 0);
     m_vao.bind();
     glDrawElements(GL_TRIANGLES, GLsizei(m_indexCount), GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);

@@ -47,8 +47,9 @@ struct SurfaceImage {
 // tangent-space normal map sampled bilinearly (no mipmaps: minification is
 // handled by the supersampling, and no mip level can mix tiles), Lambert plus
 // a little Blinn-Phong from one directional light, both faces lit (open
-// surfaces). Needs a current context for its whole life (EGL or OSMesa); the
-// mesh is uploaded once, then any number of views.
+// surfaces); where a mesh has a metallic-roughness texture, its smooth
+// texels shade as water (glsl/surface.frag). Needs a current context for its whole life (EGL or
+// OSMesa); the mesh is uploaded once, then any number of views.
 class SurfaceRenderer {
 public:
     // Throws std::invalid_argument for a mesh whose attribute counts or
@@ -64,10 +65,14 @@ public:
     const BoundingSphere& bounds() const { return m_bounds; }
 
 private:
+    void setMetallicRoughness(const TexturedMesh& mesh);
+
     Program m_program;
     VertexArray m_vao;
     Buffer m_vertices, m_indices;
     Texture2D m_baseColour, m_normalMap;
+    Texture2D m_metallicRoughness; // 1 x 1 when the mesh has none (m_wet false)
+    bool m_wet = false;
     std::size_t m_indexCount = 0;
     BoundingSphere m_bounds;
 };

@@ -48,6 +48,31 @@ if(NOT head STREQUAL "676c544602000000")
   message(SEND_ERROR "torus.glb does not start as a GLB 2.0 file: ${head}")
 endif()
 
+# Water drops on a model (surface_drops_blob: gravity in object space, strokes on
+# the surface): a turntable of the wet drops, the GLB with its roughness texture
+# (the water's gloss), and the session recording gravity's direction.
+run(0 "" render --preset surface_drops_blob --tiles 300 --tile-size 4 --steps 20 --backend cpu
+    --resolution 64x64 --turntable 2 --gravity-direction 0.25,-1,0 --out drops.png)
+foreach(f drops_000.png drops_001.png drops.json)
+  if(NOT EXISTS "${WORK}/${f}")
+    message(SEND_ERROR "surface_drops_blob --turntable 2 did not write ${f}")
+  endif()
+endforeach()
+file(READ "${WORK}/drops.json" session)
+string(JSON side GET "${session}" gravity direction 0)
+if(NOT side EQUAL 0.25)
+  message(SEND_ERROR "drops.json does not record gravity's direction: ${session}")
+endif()
+run(0 "" render --preset surface_drops_blob --tiles 300 --tile-size 4 --steps 20 --backend cpu
+    --out drops.glb)
+file(READ "${WORK}/drops.glb" glb HEX)
+# "metallicRoughnessTexture" in the JSON chunk, hex-encoded.
+string(HEX "metallicRoughnessTexture" needle)
+string(FIND "${glb}" "${needle}" at)
+if(at EQUAL -1)
+  message(SEND_ERROR "drops.glb has no metallicRoughnessTexture for the wet drops")
+endif()
+
 # Turntable frames, and the options recorded.
 run(0 "" render --mesh sample:sphere --preset turk_large_spots ${small} --turntable 3
     --view 10,30 --no-metric-correction --curvature-scale 0.5 --out turn.png)

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -19,10 +20,12 @@
 #include <Eigen/Geometry>
 
 #include "core/base/errors.hpp"
+#include "core/domain/atlas.hpp"
 #include "core/io/image_io.hpp"
 #include "core/output/colormap.hpp"
 #include "core/session/session.hpp"
 #include "core/surface/display_atlas.hpp"
+#include "core/surface/surface_colours.hpp"
 #include "core/surface/surface_glb.hpp"
 #include "gl/surface_view.hpp"
 #include "gl_test_support.hpp"
@@ -395,4 +398,88 @@ TEST(SurfaceView, DISABLED_DemoPatterns) {
              "demo_" + preset + "_corner_flat");
         exportSurfaceGlb(tiles, height, colours, std::string(folder) + "/demo_" + preset + ".glb");
     }
+}
+
+// Standing water (SurfaceColours::wetness -> the metallic-roughness texture):
+// the wet half of a sphere shines, reflecting the environment, while its dry
+// half draws as a mesh without the texture does; the GLB keeps the texture
+// (glTF's metallicRoughnessTexture, roughness in G) and reloads to the same look.
+TEST(SurfaceView, StandingWaterShinesAndSurvivesTheGlb) {
+    test::glContext();
+    const SurfaceTiles tiles = test::cubeSphereTiles(8);
+    SurfaceColours c;
+    c.colours = test::constantColours(tiles, {150, 120, 90, 255});
+    c.height.assign(tiles.atlas->cellCount(), 0.0f); // flat: only the wetness differs
+    c.relief = 0.0f;
+    const TexturedMesh dry = texturedSurface(tiles, c);
+    EXPECT_EQ(dry.metallicRoughness.width, 0);
+    c.wetness = test::fieldOnTexels(
+        tiles, [](const Eigen::Vector3f& p) { return p.x() > 0.2f ? 1.0f : 0.0f; });
+    const TexturedMesh wet = texturedSurface(tiles, c);
+    ASSERT_EQ(wet.metallicRoughness.width, wet.baseColour.width);
+    ASSERT_EQ(wet.metallicRoughness.height, wet.baseColour.height);
+
+    const gl::SurfaceRenderer dryRenderer(dry), wetRenderer(wet);
+    gl::ViewOptions view = cutOut(96, 96);
+    view.elevation = 10;
+    view.azimuth = -90; // the dry half faces the camera
+    const Difference dryHalf = compareInterior(dryRenderer.render(view), wetRenderer.render(view));
+    // The same formula on both sides of the branch; a driver may round it differently.
+    EXPECT_LE(dryHalf.worst, 1);
+    view.azimuth = 90; // the wet half
+    const gl::SurfaceImage plain = dryRenderer.render(view), shining = wetRenderer.render(view);
+    keep(shining, "surface_wet_half");
+    const Difference wetHalf = compareInterior(plain, shining);
+    std::printf("dry half: worst %d; wet half: worst %d, mean %.2f levels\n", dryHalf.worst,
+                wetHalf.worst, wetHalf.mean);
+    // The environment's reflection and the sharp highlight: tens of levels.
+    EXPECT_GT(wetHalf.mean, 5.0);
+    EXPECT_GT(wetHalf.worst, 60);
+
+    const std::string path = (test::scratchDir("surface_glb_wet") / "wet.glb").string();
+    writeTexturedGlb(wet, path);
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string error, warning;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &error, &warning, path)) << error;
+    const tinygltf::PbrMetallicRoughness& pbr = model.materials.at(0).pbrMetallicRoughness;
+    EXPECT_GE(pbr.metallicRoughnessTexture.index, 0);
+    EXPECT_EQ(pbr.roughnessFactor, 1.0);
+    EXPECT_EQ(pbr.metallicFactor, 0.0);
+    const TexturedMesh again = readTexturedGlb(path);
+    EXPECT_EQ(again.metallicRoughness.texels, wet.metallicRoughness.texels);
+    const gl::SurfaceImage reloaded = gl::SurfaceRenderer(again).render(view);
+    int worst = 0;
+    for (std::size_t p = 0; p < shining.rgba.size(); ++p)
+        worst = std::max(worst, std::abs(int(shining.rgba[p]) - int(reloaded.rgba[p])));
+    EXPECT_LE(worst, 1);
+}
+
+// What a watercolour state shows on a model: wetness from its standing water
+// (0 on a dry film, 1 at kWetDepth and deeper), the relief from the water's
+// height scaled by the deepest water; another map shows no water.
+TEST(SurfaceColours, WatercolourShowsItsWater) {
+    Session s = loadPreset("watercolour_wet_in_wet");
+    const SurfaceTiles tiles = test::cubeSphereTiles(4);
+    const Atlas& atlas = *tiles.atlas;
+    State state(atlas.width(), atlas.height(), 7);
+    std::vector<std::uint32_t> used;
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+        if (atlas.used(i))
+            used.push_back(i);
+    ASSERT_GE(used.size(), 3u);
+    state.plane(0)[used[1]] = 0.25f * kWetDepth;
+    state.plane(0)[used[2]] = 2.0f * kWetDepth;
+    SurfaceColours c = surfaceColours(state, s, atlas);
+    ASSERT_EQ(c.wetness.size(), atlas.cellCount());
+    EXPECT_EQ(c.wetness[used[0]], 0.0f);
+    EXPECT_GT(c.wetness[used[1]], 0.05f);
+    EXPECT_LT(c.wetness[used[1]], 0.5f);
+    EXPECT_EQ(c.wetness[used[2]], 1.0f);
+    EXPECT_EQ(c.height[used[2]], 2.0f * kWetDepth);
+    EXPECT_EQ(c.relief, kWaterRelief);
+    state.plane(0)[used[2]] = 0.0f; // only a thin film left: a flatter relief
+    EXPECT_NEAR(surfaceColours(state, s, atlas).relief, kWaterRelief * 0.25f, 1e-6f);
+    s.colormap.name = "grey";
+    EXPECT_TRUE(surfaceColours(state, s, atlas).wetness.empty());
 }

@@ -210,7 +210,7 @@ void Designer::exportModel(const std::string& path) {
         Session shown = m_doc.live();
         shown.colormap = m_doc.liveColormap();
         const SurfaceColours c = surfaceColours(m_doc.run().state(), shown, *shown.atlas);
-        exportSurfaceGlb(m_surface->tiles, c.height, c.colours, path);
+        writeTexturedGlb(texturedSurface(m_surface->tiles, c), path);
         saveSessionFile(m_doc.completed(), fs::path(path).replace_extension(".json").string());
         m_status = "exported " + path;
     });

@@ -195,7 +195,7 @@ void Designer::renderModelView(int width, int height) {
     if (m_showActiveTiles)
         tintActiveTiles(c.colours, *live.atlas);
     // The mesh and program stay; only the pattern's textures change.
-    const TexturedMesh textured = texturedSurface(m_surface->tiles, c.height, c.colours);
+    const TexturedMesh textured = texturedSurface(m_surface->tiles, c);
     if (!m_modelRenderer || m_modelRendererFor != m_surface) {
         m_modelRenderer = std::make_unique<gl::SurfaceRenderer>(textured);
         m_modelRendererFor = m_surface;

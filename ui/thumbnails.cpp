@@ -121,7 +121,7 @@ void Thumbnails::work(std::vector<Session> presets) {
             if (setup) {
                 Session shown = s;
                 const SurfaceColours c = surfaceColours(result.state, shown, *s.atlas);
-                TexturedMesh textured = texturedSurface(setup->tiles, c.height, c.colours);
+                TexturedMesh textured = texturedSurface(setup->tiles, c);
                 std::lock_guard<std::mutex> lock(m_mutex);
                 m_pendingModels[s.name] = std::move(textured);
                 ++m_rendered;

@@ -86,7 +86,7 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
     const SurfaceColours c = surfaceColours(result.state, result.completed, atlas);
     const SurfaceView& v = result.completed.surface.view;
     if (!out.empty() && isModelOutput(out)) {
-        exportSurfaceGlb(setup.tiles, c.height, c.colours, files.stage(out));
+        writeTexturedGlb(texturedSurface(setup.tiles, c), files.stage(out));
         written.push_back(out);
     } else if (!out.empty()) {
         std::unique_ptr<gl::Context> own;
@@ -100,7 +100,7 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
         view.azimuth = v.azimuth;
         view.elevation = v.elevation;
         view.distance = v.distance;
-        const gl::SurfaceRenderer renderer(texturedSurface(setup.tiles, c.height, c.colours));
+        const gl::SurfaceRenderer renderer(texturedSurface(setup.tiles, c));
         if (v.turntable > 0) {
             const std::vector<gl::SurfaceImage> frames =
                 gl::renderTurntable(renderer, view, v.turntable);

@@ -67,7 +67,10 @@ SettleRun::SettleRun(const SettleFlags& flags, Session& session, bool preset, bo
         throw InputError("--until-settled and --no-settle are exclusive: give one");
     const long long maxSteps =
         flags.maxSteps.empty() ? -1 : integerFlag("--max-steps", flags.maxSteps, 1, kMaxSteps);
-    const bool on = flags.untilSettled || (preset && !stepsGiven && !flags.noSettle);
+    // Drops running under gravity move by nature, and their deposits change
+    // slowly while they run: a preset with gravity runs its steps as written.
+    const bool on = flags.untilSettled ||
+                    (preset && !stepsGiven && !flags.noSettle && !session.gravity.active());
     if (!on) {
         if (maxSteps != -1)
             throw InputError("--max-steps applies to a run until settled: add --until-settled");

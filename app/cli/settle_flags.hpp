@@ -29,7 +29,8 @@ void addSettleFlags(CLI::App& command, SettleFlags& flags);
 class SettleRun {
 public:
     // Decides whether the run settles (presets do unless --steps or
-    // --no-settle) and, when it does, sets the cap in `session`.
+    // --no-settle, or they have gravity) and, when it does, sets the cap in
+    // `session`.
     SettleRun(const SettleFlags& flags, Session& session, bool preset, bool stepsGiven);
 
     bool active() const { return m_detector != nullptr; }

@@ -5,19 +5,48 @@
 #include <limits>
 
 #include "core/domain/atlas.hpp"
+#include "core/models/watercolour.hpp"
 #include "core/output/colormap.hpp"
 
 namespace morphogen {
 
-SurfaceColours surfaceColours(const State& state, const Session& session, const Atlas& atlas) {
+namespace {
+
+// The watercolour map paints the paper; its water is shown as water.
+void addWater(const State& state, const Atlas& atlas, SurfaceColours& c) {
+    const float* water = state.plane(WatercolourModel::W);
+    float deepest = 0.0f;
+    c.wetness.assign(atlas.cellCount(), 0.0f);
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i) {
+        if (!atlas.used(i))
+            continue;
+        const float w = std::isfinite(water[i]) ? std::max(water[i], 0.0f) : 0.0f;
+        // Smooth from a dry film (no gloss below 0.02) to standing water.
+        const float x = std::clamp((w - 0.02f) / (kWetDepth - 0.02f), 0.0f, 1.0f);
+        c.wetness[i] = x * x * (3.0f - 2.0f * x);
+        c.height[i] = w;
+        deepest = std::max(deepest, w);
+    }
+    c.relief = kWaterRelief * std::min(deepest / kWetDepth, 1.0f);
+}
+
+} // namespace
+
+SurfaceColours surfaceColours(const State& state, const Session& session, const Atlas& atlas,
+                              const std::optional<std::pair<float, float>>& levels) {
     const int chemical = colormapChemical(session.colormap, session.outputModel());
     const float* plane = state.plane(chemical);
     float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
-    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
-        if (atlas.used(i)) {
-            low = std::min(low, plane[i]);
-            high = std::max(high, plane[i]);
-        }
+    if (levels) {
+        low = levels->first;
+        high = levels->second;
+    } else {
+        for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+            if (atlas.used(i)) {
+                low = std::min(low, plane[i]);
+                high = std::max(high, plane[i]);
+            }
+    }
     if (!(high > low))
         high = low + 1.0f; // a flat result (warned about already): one colour
     SurfaceColours c;
@@ -31,12 +60,15 @@ SurfaceColours surfaceColours(const State& state, const Session& session, const 
             const std::uint32_t i = atlas.cellAt(x, y);
             if (!atlas.used(i))
                 continue;
-            c.height[i] = (plane[i] - low) / (high - low);
+            c.height[i] = std::clamp((plane[i] - low) / (high - low), 0.0f, 1.0f);
             for (int k = 0; k < 3; ++k)
                 c.colours[i][k] = std::uint8_t(
                     std::lround(std::clamp(rgb[std::size_t(x) * 3 + k], 0.0f, 1.0f) * 255.0f));
         }
     }
+    // The watercolour map accepts only the watercolour model's state (ColourMapRows checks).
+    if (isWatercolourMap(session.colormap))
+        addWater(state, atlas, c);
     return c;
 }
 

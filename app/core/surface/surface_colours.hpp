@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "core/base/state.hpp"
@@ -15,11 +17,29 @@ class Atlas;
 // (the height of the relief) and its colour through the session's map (the
 // colour map of the final state's model). What a surface screenshot, a GLB
 // export and the designer's 3D view show.
+//
+// Watercolour (a model with standing water "w" and the watercolour map: Lo
+// 5.6's drops and washes) shows its water as water instead: `wetness` per
+// cell, 0 on dry texels to 1 where the water stands kWetDepth or deeper, and
+// the relief is the water's height (not the paint's), at `relief` =
+// kWaterRelief times the deepest water over kWetDepth (at most 1) of the
+// bump: drops bulge more than a pattern's relief, and a drying wash flattens
+// instead of showing its last film magnified.
 struct SurfaceColours {
     std::vector<float> height;
     std::vector<std::array<std::uint8_t, 4>> colours;
+    std::vector<float> wetness; // empty: no water to show
+    float relief = 1.0f;        // scales SurfaceLook::bump
 };
 
-SurfaceColours surfaceColours(const State& state, const Session& session, const Atlas& atlas);
+// Water this deep (model units of the "w" chemical) looks fully wet.
+constexpr float kWetDepth = 0.5f;
+// Standing water's relief against a pattern's (SurfaceLook::bump).
+constexpr float kWaterRelief = 3.0f;
+
+// `levels`, when given, replace the min-max range of the display chemical (a
+// frame sequence's locked levels).
+SurfaceColours surfaceColours(const State& state, const Session& session, const Atlas& atlas,
+                              const std::optional<std::pair<float, float>>& levels = {});
 
 } // namespace morphogen

@@ -127,7 +127,13 @@ void writeTexturedGlb(const TexturedMesh& mesh, const std::string& path) {
     material.pbrMetallicRoughness.baseColorTexture.index =
         addPngTexture(model, mesh.baseColour, "base colour");
     material.pbrMetallicRoughness.metallicFactor = 0.0;
-    material.pbrMetallicRoughness.roughnessFactor = 0.7;
+    material.pbrMetallicRoughness.roughnessFactor = kDryRoughness;
+    if (mesh.metallicRoughness.width > 0) {
+        // The texture holds the roughness itself; glTF multiplies it by the factor.
+        material.pbrMetallicRoughness.metallicRoughnessTexture.index =
+            addPngTexture(model, mesh.metallicRoughness, "metallic roughness");
+        material.pbrMetallicRoughness.roughnessFactor = 1.0;
+    }
     material.normalTexture.index = addPngTexture(model, mesh.normalMap, "normal map");
     // Open surfaces show their back.
     material.doubleSided = true;
@@ -201,6 +207,10 @@ TexturedMesh readTexturedGlb(const std::string& path) {
     mesh.baseColour = textureImage(model, material.pbrMetallicRoughness.baseColorTexture.index,
                                    path, "base colour texture");
     mesh.normalMap = textureImage(model, material.normalTexture.index, path, "normal texture");
+    if (material.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
+        mesh.metallicRoughness =
+            textureImage(model, material.pbrMetallicRoughness.metallicRoughnessTexture.index, path,
+                         "metallic-roughness texture");
     return mesh;
 }
 

@@ -12,7 +12,8 @@ namespace morphogen {
 // Writes a TexturedMesh as a binary glTF 2.0 file: one mesh of one triangle
 // primitive (uint32 indices; POSITION with its min and max, NORMAL,
 // TEXCOORD_0, TANGENT), one material (baseColorTexture = the colour-mapped
-// pattern, normalTexture = the baked relief, metallic 0, double-sided), both
+// pattern, normalTexture = the baked relief, metallic 0, double-sided, and
+// metallicRoughnessTexture where the mesh has one: wet water drops), the
 // textures PNG images stored in the binary chunk (mimeType image/png) with a
 // clamped, linearly filtered sampler. Every buffer view is 4-byte aligned and
 // inside the buffer. Atomic (a temporary renamed into place; an OutputFiles

@@ -8,6 +8,8 @@
 
 #include <Eigen/Geometry>
 
+#include "core/surface/surface_colours.hpp"
+
 namespace morphogen {
 
 namespace {
@@ -246,6 +248,31 @@ TexturedMesh texturedSurface(const SurfaceTiles& tiles, const std::vector<float>
                       height.empty() ? std::vector<float>(atlas.cellCount(), 0.0f)
                                      : normalisedHeight(atlas, height),
                       frames, height.empty() ? 0.0f : look.bump * frames.meanTexelLength);
+    return mesh;
+}
+
+TexturedMesh texturedSurface(const SurfaceTiles& tiles, const SurfaceColours& colours,
+                             const SurfaceLook& look) {
+    SurfaceLook scaled = look;
+    scaled.bump = look.bump * colours.relief;
+    TexturedMesh mesh = texturedSurface(tiles, colours.height, colours.colours, scaled);
+    if (colours.wetness.empty())
+        return mesh;
+    const Atlas& atlas = *tiles.atlas;
+    if (colours.wetness.size() != atlas.cellCount())
+        throw std::invalid_argument("texturedSurface: " + std::to_string(colours.wetness.size()) +
+                                    " wetness values for " + std::to_string(atlas.cellCount()) +
+                                    " atlas cells");
+    std::vector<std::array<std::uint8_t, 4>> roughness(atlas.cellCount());
+    for (std::size_t i = 0; i < roughness.size(); ++i) {
+        const float wet = std::clamp(colours.wetness[i], 0.0f, 1.0f);
+        const float r = kDryRoughness + (kWetRoughness - kDryRoughness) * wet;
+        roughness[i] = {255, std::uint8_t(std::lround(r * 255.0f)), 0, 255};
+    }
+    const DisplayAtlas display(atlas, look.gutter);
+    mesh.metallicRoughness.width = display.width();
+    mesh.metallicRoughness.height = display.height();
+    mesh.metallicRoughness.texels = display.pad(roughness);
     return mesh;
 }
 

@@ -35,6 +35,11 @@ struct TexturedMesh {
     // Tangent-space normals, xyz * 0.5 + 0.5 (alpha 255): x along the
     // tangent, y along the bitangent, z along the normal.
     RgbaImage normalMap;
+    // glTF's metallic-roughness layout (roughness in G, metallic in B, R and
+    // A 255) where the surface is partly wet (Lo 5.6's drops: smooth water
+    // on a rough surface, from SurfaceColours::wetness); 0 x 0 when it is dry
+    // everywhere (roughness 0.7, the renderer's plain shading).
+    RgbaImage metallicRoughness;
 };
 
 struct SurfaceLook {
@@ -55,6 +60,15 @@ struct SurfaceLook {
 // match the atlas.
 TexturedMesh texturedSurface(const SurfaceTiles& tiles, const std::vector<float>& height,
                              const std::vector<std::array<std::uint8_t, 4>>& colours,
+                             const SurfaceLook& look = {});
+
+// The same from a state's SurfaceColours: its relief scales look.bump, and a
+// non-empty wetness gives the mesh its metallic-roughness texture (roughness
+// mix(kDryRoughness, kWetRoughness, wetness), padded as the colours).
+struct SurfaceColours;
+constexpr float kDryRoughness = 0.7f;
+constexpr float kWetRoughness = 0.08f;
+TexturedMesh texturedSurface(const SurfaceTiles& tiles, const SurfaceColours& colours,
                              const SurfaceLook& look = {});
 
 // Per atlas cell (zero for unused cells), from the tiles' corner grids: the
