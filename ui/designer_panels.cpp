@@ -246,11 +246,11 @@ void Designer::drawModelSection() {
             });
             m_doc.replace(std::move(s), std::string("integrator ") + integrators[integrator]);
         });
+    drawGravityControls(base);
     // On a model the tiles' connectivity is the surface: no canvas edges, and
     // the atlas's size comes from its tiles (the session's surface block).
     if (base.surface.active())
         return;
-    drawGravityControls(base);
     int edges = base.edges == EdgeMode::Periodic ? 0 : 1;
     const char* edgeNames[] = {"periodic (tiles seamlessly)", "clamped"};
     if (ImGui::Combo("edges", &edges, edgeNames, 2))
@@ -275,21 +275,36 @@ void Designer::drawModelSection() {
         ImGui::SetTooltip("cells of the canvas; the pattern keeps its size in the picture");
 }
 
-// Drops on a tilted canvas (Session::gravity): on, the downhill angle and the
-// drift speed; each change is a new session, as the edges are.
+// Drops on a tilted canvas or running down a model (Session::gravity): on,
+// the downhill angle on the canvas or gravity's direction in the model's
+// object space, and the drift speed; each change is a new session, as the
+// edges are (on a model the surface's drift weights are rebuilt).
 void Designer::drawGravityControls(const Session& base) {
+    const bool model = base.surface.active();
     bool on = base.gravity.active();
     float angle = float(base.gravity.angle);
+    float down[3] = {float(base.gravity.direction[0]), float(base.gravity.direction[1]),
+                     float(base.gravity.direction[2])};
     float strength = float(on ? base.gravity.strength : 0.3);
     bool changed = ImGui::Checkbox("gravity", &on);
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("tilt the canvas: water and everything that diffuses drifts downhill\n"
-                          "(drops run down the page; 270 degrees is down)");
+        ImGui::SetTooltip(model ? "water and everything that diffuses runs down the model\n"
+                                  "(paint wet drops with the watercolour brush)"
+                                : "tilt the canvas: water and everything that diffuses drifts "
+                                  "downhill\n(drops run down the page; 270 degrees is down)");
     if (on) {
-        ImGui::DragFloat("downhill", &angle, 1.0f, -360.0f, 360.0f, "%.0f degrees");
-        changed |= ImGui::IsItemDeactivatedAfterEdit();
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("counter-clockwise from +x: 270 is down the page");
+        if (model) {
+            ImGui::DragFloat3("down", down, 0.01f, -1.0f, 1.0f);
+            changed |= ImGui::IsItemDeactivatedAfterEdit();
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("gravity in the model's object space (0, -1, 0: down its y "
+                                  "axis);\ndrops follow its projection on the surface");
+        } else {
+            ImGui::DragFloat("downhill", &angle, 1.0f, -360.0f, 360.0f, "%.0f degrees");
+            changed |= ImGui::IsItemDeactivatedAfterEdit();
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("counter-clockwise from +x: 270 is down the page");
+        }
         ImGui::DragFloat("drift", &strength, 0.01f, 0.0f, float(kMaxGravityStrength),
                          "%.2f units/time");
         changed |= ImGui::IsItemDeactivatedAfterEdit();
@@ -300,7 +315,10 @@ void Designer::drawGravityControls(const Session& base) {
         return;
     guarded("gravity", [&] {
         Session s = edited(base, [&](json& j) {
-            if (on)
+            if (on && model)
+                j["gravity"] = {{"strength", strength},
+                                {"direction", json::array({down[0], down[1], down[2]})}};
+            else if (on)
                 j["gravity"] = {{"angle", angle}, {"strength", strength}};
             else
                 j.erase("gravity");

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cassert>
+#include <climits>
 #include <utility>
 
 #include "core/base/errors.hpp"
 #include "core/base/limits.hpp"
 #include "core/output/colormap.hpp"
+#include "core/sim/segments.hpp"
 
 namespace morphogen::ui {
 
@@ -16,15 +18,19 @@ Session openEnded(Session s) {
         // The canvas is one size: the levels' steps run at the final size.
         s.schedule.clear();
     }
-    const long long extra = kMaxSteps / 2;
+    // A run takes at most INT_MAX engine steps: on a model each session step
+    // may take many substeps (small texels, drops' drift), so it runs fewer.
+    const long long most =
+        s.atlasWeights ? std::min<long long>(kMaxSteps, INT_MAX / atlasSubsteps(s)) : kMaxSteps;
+    const long long extra = most / 2;
     if (s.stages.empty()) {
-        s.steps = int(kMaxSteps);
+        s.steps = int(most);
     } else {
-        s.stages.back().steps = int(std::min<long long>(s.stages.back().steps + extra, kMaxSteps));
+        s.stages.back().steps = int(std::min<long long>(s.stages.back().steps + extra, most));
         long long total = 0;
         for (const Stage& stage : s.stages)
             total += stage.steps;
-        s.steps = int(std::min<long long>(total, kMaxSteps));
+        s.steps = int(std::min<long long>(total, most));
     }
     return s;
 }

@@ -120,15 +120,11 @@ float maxCoefficientSum(const AtlasWeights& weights) {
     return worst;
 }
 
-double maxDriftSum(const AtlasWeights& weights) {
+double maxDriftOutflow(const AtlasWeights& weights) {
     double worst = 0;
-    if (!weights.drift)
-        return worst;
-    for (std::size_t i = 0; i < weights.drift->outflow.size(); ++i) {
-        const auto& in = weights.drift->inflow[i];
-        worst = std::max(worst, double(weights.drift->outflow[i]) + double(in[0]) + double(in[1]) +
-                                    double(in[2]) + double(in[3]));
-    }
+    if (weights.drift)
+        for (const float out : weights.drift->outflow)
+            worst = std::max(worst, double(out));
     return worst;
 }
 

@@ -63,10 +63,10 @@ ExplicitStability tensorAtlasStability(const AtlasWeights& weights,
     for (const std::array<float, 3>& mix : mixes)
         worst = std::max(worst, maxTensorSum(weights, mix));
     return gershgorinStability(
-        2.0 * worst + maxDriftSum(weights),
+        2.0 * worst + 2.0 * maxDriftOutflow(weights),
         weights.drift ? "Gershgorin bound on the weighted atlas domain with anisotropy and gravity "
                         "(twice the largest sum of a texel's combined weights over the chemicals' "
-                        "tensors, plus the largest sum of its drift coefficients)"
+                        "tensors, plus twice the largest drift outflow)"
                       : "Gershgorin bound on the weighted atlas domain with anisotropy (twice the "
                         "largest sum of a texel's combined weights over the chemicals' tensors)");
 }
@@ -79,13 +79,15 @@ ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& d
         double maxRate = 0;
         for (int c = 0; c < op.chemicals; ++c)
             maxRate = std::max(maxRate, double(op.rates[std::size_t(c)]));
-        // Drops' drift (AtlasWeights::drift) adds its outflow and inflow to a row.
+        // Drops' drift (AtlasWeights::drift): the area-weighted columns' bound
+        // (maxDriftOutflow says why; the weights' rows and columns agree there).
         if (weights->drift)
             return gershgorinStability(
-                2.0 * maxRate * double(maxCoefficientSum(*weights)) + maxDriftSum(*weights),
+                2.0 * maxRate * double(maxCoefficientSum(*weights)) +
+                    2.0 * maxDriftOutflow(*weights),
                 "Gershgorin bound on the weighted atlas domain with gravity (largest rate times "
-                "twice the largest sum of a texel's four weights, plus the largest sum of its "
-                "drift coefficients)");
+                "twice the largest sum of a texel's four weights, plus twice the largest drift "
+                "outflow, over the area-weighted columns)");
         return gershgorinStability(
             2.0 * maxRate * double(maxCoefficientSum(*weights)),
             "Gershgorin bound on the weighted atlas domain (largest rate times twice the largest "

@@ -79,9 +79,10 @@ int atlasSubsteps(const Session& session) {
                                 double(value->second));
     }
     ratio *= rateFactor;
-    // Drops' drift adds its Gershgorin share, dt * maxDriftSum / 2 of the
-    // explicit limit, to the diffusion's (which the session's dt keeps within 1).
-    ratio += double(session.dt) * maxDriftSum(weights) / 2.0;
+    // Drops' drift adds its share of the explicit limit, dt * its largest
+    // outflow (maxDriftOutflow: the area-weighted column bound), to the
+    // diffusion's (which the session's dt keeps within 1).
+    ratio += double(session.dt) * maxDriftOutflow(weights);
     return ratio > 1.0 ? int(std::ceil(ratio - 1e-9)) : 1;
 }
 
