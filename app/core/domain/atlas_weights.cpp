@@ -120,12 +120,17 @@ float maxCoefficientSum(const AtlasWeights& weights) {
     return worst;
 }
 
-double maxDriftOutflow(const AtlasWeights& weights) {
-    double worst = 0;
-    if (weights.drift)
-        for (const float out : weights.drift->outflow)
-            worst = std::max(worst, double(out));
-    return worst;
+double driftSpectralBound(const AtlasWeights& weights) {
+    if (!weights.drift)
+        return 0.0;
+    double rows = 0, outflow = 0;
+    for (std::size_t i = 0; i < weights.drift->outflow.size(); ++i) {
+        const auto& in = weights.drift->inflow[i];
+        const double out = double(weights.drift->outflow[i]);
+        rows = std::max(rows, out + double(in[0]) + double(in[1]) + double(in[2]) + double(in[3]));
+        outflow = std::max(outflow, out);
+    }
+    return std::min(rows, 2.0 * outflow);
 }
 
 int weightedSubsteps(const AtlasWeights& weights) {

@@ -85,17 +85,18 @@ struct AtlasDrift {
     std::vector<float> outflow;               // per atlas cell
 };
 
-// The drift's largest outflow coefficient (0 without drift): its part of the
-// explicit limit. Row sums overstate it: where the flow converges on a small
-// texel its inflow coefficients are the neighbours' outflow times their area
-// over its own (up to 20x on simplified meshes). In the area-weighted frame
-// (D M D^-1, D = diag(area)) each column of the drift has -outflow[j] on its
-// diagonal and +outflow[j] off it (what leaves j arrives elsewhere), and each
-// column of the diffusion -s_j and +s_j (s_j its rate times its weight sum), so
-// Gershgorin's column discs put the spectrum of the step in the disc through
-// 0 of radius max_j dt (s_j + outflow[j]): explicit Euler is stable, and
-// positive, while that is at most 1.
-double maxDriftOutflow(const AtlasWeights& weights);
+// The drift's part of the bound on the step's spectral radius (0 without
+// drift), the smaller of two Gershgorin bounds of the same matrix:
+// - rows: a texel's disc has its outflow plus its inflow coefficients, which
+//   overstate it where the flow converges on a small texel (its inflow is the
+//   neighbours' outflow times their area over its own: up to 20x on
+//   simplified meshes): the largest outflow + inflow sum;
+// - area-weighted columns (D M D^-1, D = diag(area)): each column of the
+//   drift has -outflow[j] on its diagonal and +outflow[j] off it (what leaves
+//   j arrives elsewhere), as the diffusion's columns have their weight sums:
+//   twice the largest outflow. Explicit Euler is also positive while dt times
+//   a texel's diffusion sum plus its outflow stays at most 1.
+double driftSpectralBound(const AtlasWeights& weights);
 
 // Throws InputError unless `weights` fits `atlas`: one entry per atlas cell in
 // both vectors (and in `diagonal` unless it is empty), every coefficient and

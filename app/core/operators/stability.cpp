@@ -63,10 +63,10 @@ ExplicitStability tensorAtlasStability(const AtlasWeights& weights,
     for (const std::array<float, 3>& mix : mixes)
         worst = std::max(worst, maxTensorSum(weights, mix));
     return gershgorinStability(
-        2.0 * worst + 2.0 * maxDriftOutflow(weights),
+        2.0 * worst + driftSpectralBound(weights),
         weights.drift ? "Gershgorin bound on the weighted atlas domain with anisotropy and gravity "
                         "(twice the largest sum of a texel's combined weights over the chemicals' "
-                        "tensors, plus twice the largest drift outflow)"
+                        "tensors, plus the drift's bound)"
                       : "Gershgorin bound on the weighted atlas domain with anisotropy (twice the "
                         "largest sum of a texel's combined weights over the chemicals' tensors)");
 }
@@ -79,15 +79,13 @@ ExplicitStability explicitStability(const DiffusionOperator& op, const Domain& d
         double maxRate = 0;
         for (int c = 0; c < op.chemicals; ++c)
             maxRate = std::max(maxRate, double(op.rates[std::size_t(c)]));
-        // Drops' drift (AtlasWeights::drift): the area-weighted columns' bound
-        // (maxDriftOutflow says why; the weights' rows and columns agree there).
+        // Drops' drift (AtlasWeights::drift): driftSpectralBound says why.
         if (weights->drift)
             return gershgorinStability(
-                2.0 * maxRate * double(maxCoefficientSum(*weights)) +
-                    2.0 * maxDriftOutflow(*weights),
+                2.0 * maxRate * double(maxCoefficientSum(*weights)) + driftSpectralBound(*weights),
                 "Gershgorin bound on the weighted atlas domain with gravity (largest rate times "
-                "twice the largest sum of a texel's four weights, plus twice the largest drift "
-                "outflow, over the area-weighted columns)");
+                "twice the largest sum of a texel's four weights, plus the drift's: the smaller "
+                "of its largest row sum and twice its largest outflow)");
         return gershgorinStability(
             2.0 * maxRate * double(maxCoefficientSum(*weights)),
             "Gershgorin bound on the weighted atlas domain (largest rate times twice the largest "

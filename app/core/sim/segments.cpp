@@ -79,10 +79,10 @@ int atlasSubsteps(const Session& session) {
                                 double(value->second));
     }
     ratio *= rateFactor;
-    // Drops' drift adds its share of the explicit limit, dt * its largest
-    // outflow (maxDriftOutflow: the area-weighted column bound), to the
-    // diffusion's (which the session's dt keeps within 1).
-    ratio += double(session.dt) * maxDriftOutflow(weights);
+    // Drops' drift adds its share of the explicit limit, dt * its spectral
+    // bound / 2 (driftSpectralBound), to the diffusion's (which the session's
+    // dt keeps within 1).
+    ratio += double(session.dt) * driftSpectralBound(weights) / 2.0;
     return ratio > 1.0 ? int(std::ceil(ratio - 1e-9)) : 1;
 }
 
