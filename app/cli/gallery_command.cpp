@@ -310,6 +310,17 @@ void gallery(const GalleryFlags& f) {
     if (!(f.stepsScale > 0) || !std::isfinite(f.stepsScale))
         throw InputError("--steps-scale must be a positive number");
     std::vector<Session> presets = selectPresets(f.only);
+    // The gallery's pictures are flat; strokes placed on a model have nowhere to go there.
+    for (auto it = presets.begin(); it != presets.end();)
+        if (editsNeedTheModel(it->edits)) {
+            std::fprintf(stderr,
+                         "morphogen: gallery leaves out %s: its strokes are on its model (render "
+                         "it with: morphogen render --preset %s --out %s.png)\n",
+                         it->name.c_str(), it->name.c_str(), it->name.c_str());
+            it = presets.erase(it);
+        } else {
+            ++it;
+        }
     // Every preset's overrides are checked before the first one runs.
     for (const Session& preset : presets) {
         Session s = preset;

@@ -291,4 +291,11 @@ void checkLiveEdits(const Session& s, long long totalSteps, const std::string& s
                                   "sets its parameters per tile)");
 }
 
+bool editsNeedTheModel(const std::vector<LiveEdit>& edits) {
+    for (const LiveEdit& e : edits)
+        if (e.deform || (e.stroke && e.stroke->surface))
+            return true;
+    return false;
+}
+
 } // namespace morphogen

@@ -83,6 +83,11 @@ std::vector<LiveEdit> liveEditsFromJson(const FieldReader& top, const nlohmann::
                                         const Session& session);
 nlohmann::json liveEditsToJson(const std::vector<LiveEdit>& edits);
 
+// Whether any edit is on the session's model (a stroke in the mesh's
+// coordinates, a deformation): such a session cannot run flat, without its
+// surface (the gallery's flat pictures).
+bool editsNeedTheModel(const std::vector<LiveEdit>& edits);
+
 // validateSession's part: edits after the session's last step, and strokes on
 // a domain they cannot address (a surface, a batched sweep), are refused.
 void checkLiveEdits(const Session& session, long long totalSteps, const std::string& source);
