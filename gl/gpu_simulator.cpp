@@ -289,6 +289,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         defines.push_back("ATLAS_TENSOR");
     if (m_k.drifting())
         defines.push_back("ATLAS_DRIFT");
+    if (m_k.drifting() && m_k.driftCarrier >= 0)
+        defines.push_back("DRIFT_CARRIER");
     if (pass)
         defines.push_back(pass);
     if (!m_frozenMask.empty())
@@ -517,6 +519,12 @@ void GpuSimulator::setLiveUniforms(const Program& program) const {
     }
     if (m_k.drifting())
         setChemicalVec4s(program.uniform("uDrifts"), m_k.drifts, textures);
+    if (m_k.drifting() && m_k.driftCarrier >= 0) {
+        float mask[4] = {0, 0, 0, 0};
+        mask[m_k.driftCarrier] = 1.0f;
+        glUniform4fv(program.uniform("uCarrier"), 1, mask);
+        glUniform1f(program.uniform("uCling"), m_k.driftCling);
+    }
     if (m_k.tensorWeighted()) {
         std::array<std::array<float, kMaxChemicals>, 3> mix{};
         for (int c = 0; c < op.chemicals; ++c)

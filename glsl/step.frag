@@ -147,6 +147,17 @@ uniform sampler2D uDriftIn;
 uniform sampler2D uDriftOut;
 uniform vec4 uDrifts[STATE_TEXTURES];
 #endif
+#ifdef DRIFT_CARRIER
+// The carrier's channel of the first state texture (one-hot) and its cling
+// depth: a texel passes on its amount times m(w) = w / (w + cling), w >= 0
+// (StepConstants::driftCarrier; every drifting chemical is in that texture).
+uniform vec4 uCarrier;
+uniform float uCling;
+vec4 carried(vec4 v) {
+    float w = max(dot(uCarrier, v), 0.0);
+    return (w / (w + uCling)) * v;
+}
+#endif
 bool gAtlasBorder;    // this fragment's texel is on its tile's border ring
 ivec2 unpackTexel(uint address) {
     return ivec2(int(address & 0xFFFFu), int(address >> 16));
@@ -285,7 +296,13 @@ vec4 diffusion(sampler2D state, int t, vec2 uv, vec4 c) {
 #elif defined(ATLAS_DRIFT)
     vec4 din = texelFetch(uDriftIn, ivec2(gl_FragCoord.xy), 0);
     float dout = texelFetch(uDriftOut, ivec2(gl_FragCoord.xy), 0).x;
+#ifdef DRIFT_CARRIER
+    // Texture 0 holds the carrier; nothing drifts in the others (uDrifts 0).
+    vec4 drift = (((din.z * carried(l) + din.x * carried(r)) + din.w * carried(d)) +
+                  din.y * carried(u)) - dout * carried(c);
+#else
     vec4 drift = (((din.z * l + din.x * r) + din.w * d) + din.y * u) - dout * c;
+#endif
     return uDiffusion[t] * (sides - wsum * c) + uDrifts[t] * drift;
 #elif defined(ATLAS_WEIGHTS)
     return uDiffusion[t] * (sides - wsum * c);

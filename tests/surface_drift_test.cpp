@@ -187,6 +187,66 @@ TEST(SurfaceDrift, DropOnATiltedPlaneMovesAlongGravitysProjection) {
                 speed * 60.0);
 }
 
+// A carrier (Gravity::carrier): what a texel passes downhill is scaled by its
+// water's mobility w / (w + cling), so the drop's deep middle outruns its thin
+// edges: its front steepens and a thin film stays behind it (Lo's wet trace).
+// Measured along the slope: the water's third moment turns negative (a tail
+// upstream) where the carrier-free drop stays symmetric, and more water is
+// left behind the starting point; the water is conserved either way.
+TEST(SurfaceDrift, ACarrierLeavesATrailBehindASteepFront) {
+    const double tilt = 30.0, strength = 0.5;
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "morphogen_surface_drift_carrier.obj").string();
+    writeObj(tiltedPlane(8, tilt), path);
+    const double a = tilt * 3.14159265358979323846 / 180.0;
+    const Eigen::Vector3d downhill(0, -std::sin(a), -std::cos(a));
+    const Eigen::Vector3d start(0, 0.5 * std::sin(a), 0.5 * std::cos(a));
+    struct Shape {
+        double skew, behind, amount;
+    };
+    const auto run = [&](const std::string& carrier) {
+        json j = dropOnMesh(path, {start.x(), start.y(), start.z()}, 0.2, strength, {0, -1, 0});
+        if (!carrier.empty())
+            j["gravity"]["carrier"] = carrier;
+        j["gravity"]["cling"] = 0.5;
+        Session s = sessionFromJson(j, "carrier");
+        setUpSurface(s);
+        SessionRun r = cpuRun(s);
+        r.advance(1);
+        const double before = dropOf(s, r.state()).amount;
+        r.advance(60 * r.substeps()); // 30 time units
+        const Drop d = dropOf(s, r.state());
+        // Moments along the slope, water- and area-weighted.
+        double m2 = 0, m3 = 0, behind = 0;
+        const float* w = r.state().plane(M::W);
+        for (std::uint32_t i = 0; i < s.atlas->cellCount(); ++i) {
+            if (!s.atlas->used(i))
+                continue;
+            const auto& p = (*s.atlasPositions)[i];
+            const Eigen::Vector3d x(p[0], p[1], p[2]);
+            const double m = double(s.atlasWeights->area[i]) * w[i];
+            const double t = (x - d.centre).dot(downhill);
+            m2 += m * t * t;
+            m3 += m * t * t * t;
+            if ((x - start).dot(downhill) < 0)
+                behind += m;
+        }
+        m2 /= d.amount;
+        m3 /= d.amount;
+        return Shape{m3 / std::pow(m2, 1.5), behind / d.amount, d.amount / before};
+    };
+    const Shape plain = run(""), clinging = run("w");
+    std::filesystem::remove(path);
+    std::printf("skew along the slope: plain %.3f, with a carrier %.3f; water behind the start: "
+                "%.3f vs %.3f\n",
+                plain.skew, clinging.skew, plain.behind, clinging.behind);
+    EXPECT_NEAR(plain.amount, 1.0, 1e-5);
+    EXPECT_NEAR(clinging.amount, 1.0, 1e-5);
+    EXPECT_LT(std::abs(plain.skew), 0.2);
+    EXPECT_LT(clinging.skew, -0.3);
+    EXPECT_GT(clinging.behind, 1.5 * plain.behind);
+}
+
 // On a sphere a drop started on the upper half runs down its meridian: its
 // centre of mass falls monotonically, stays in the plane of the meridian
 // (the vertical plane through the start point) and the water is all there.
@@ -273,4 +333,36 @@ TEST(SurfaceDrift, SessionsRecordTheDirectionAndRefuseBadValues) {
     refused(bad, "strokes[0].points");
     bad["strokes"][0]["space"] = "paper";
     refused(bad, "strokes[0].space");
+
+    // A carrier: recorded with its cling; a cling of 0, a chemical the model
+    // lacks, and a carrier on a flat canvas are refused naming gravity.carrier.
+    json carried = j;
+    carried["gravity"]["carrier"] = "w";
+    carried["gravity"]["cling"] = 0.7;
+    const Session c = sessionFromJson(carried, "carrier");
+    EXPECT_EQ(c.gravity.carrier, "w");
+    EXPECT_EQ(c.gravity.cling, 0.7);
+    EXPECT_EQ(sessionFromJson(sessionToJson(c), "again").gravity, c.gravity);
+    bad = carried;
+    bad["gravity"]["cling"] = 0;
+    refused(bad, "gravity.cling");
+    const auto refusedToRun = [](json bad, const std::string& expect) {
+        try {
+            Session b = sessionFromJson(bad, "bad.json");
+            if (b.surface.active())
+                setUpSurface(b);
+            (void)StepConstants::fromSession(b);
+            ADD_FAILURE() << "ran: " << bad["gravity"].dump();
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+        }
+    };
+    bad = carried;
+    bad["gravity"]["carrier"] = "water";
+    bad["surface"]["tiles"] = 100;
+    refusedToRun(bad, "gravity.carrier: 'water' is not a chemical");
+    bad = carried;
+    bad.erase("surface");
+    bad.erase("strokes");
+    refusedToRun(bad, "gravity.carrier");
 }

@@ -95,8 +95,10 @@ TEST(WatercolourGl, DropsRunDownhillAsOnTheCpu) {
 // Drops on a model (AtlasDrift, the ATLAS_DRIFT variant): a wet dab on the
 // sample sphere runs down under gravity on both backends alike, over the whole
 // atlas and over a set of active tiles (localized steps), and the GPU keeps the
-// area-weighted water (on the surface + gone) constant.
-TEST(WatercolourGl, DropsRunDownAModelAsOnTheCpu) {
+// area-weighted water (on the surface + gone) constant. With and without a
+// carrier (the DRIFT_CARRIER variant: the water's mobility scales the drift).
+void dropsRunDownAModelAsOnTheCpu(const std::string& carrier) {
+    SCOPED_TRACE(carrier.empty() ? "no carrier" : "carrier " + carrier);
     test::glContext();
     nlohmann::json j = {{"model", "watercolour"},
                         {"length", 40},
@@ -105,6 +107,8 @@ TEST(WatercolourGl, DropsRunDownAModelAsOnTheCpu) {
                         {"params", {{"paper_grain", 0}, {"paper_fibres", 0}}},
                         {"gravity", {{"strength", 0.5}, {"direction", {0.3, -1, 0.2}}}},
                         {"surface", {{"mesh", "sample:sphere"}, {"tiles", 150}, {"tile_size", 4}}}};
+    if (!carrier.empty())
+        j["gravity"]["carrier"] = carrier;
     Session s = sessionFromJson(j, "drops on a model");
     (void)setUpSurface(s);
     ASSERT_TRUE(s.atlasWeights && s.atlasWeights->drift);
@@ -157,6 +161,11 @@ TEST(WatercolourGl, DropsRunDownAModelAsOnTheCpu) {
             EXPECT_GT(test::maxAbsDifference(plain, gpu), 0.05f) << "gravity changed nothing";
         }
     }
+}
+
+TEST(WatercolourGl, DropsRunDownAModelAsOnTheCpu) {
+    dropsRunDownAModelAsOnTheCpu("");
+    dropsRunDownAModelAsOnTheCpu("w");
 }
 
 // The designer's GPU display of the "watercolour" map against the CPU path

@@ -315,13 +315,19 @@ void Designer::drawGravityControls(const Session& base) {
         return;
     guarded("gravity", [&] {
         Session s = edited(base, [&](json& j) {
-            if (on && model)
-                j["gravity"] = {{"strength", strength},
-                                {"direction", json::array({down[0], down[1], down[2]})}};
-            else if (on)
-                j["gravity"] = {{"angle", angle}, {"strength", strength}};
-            else
+            if (!on) {
                 j.erase("gravity");
+                return;
+            }
+            // The block's other fields (a carrier, its cling) stay as they were.
+            json& g = j["gravity"];
+            if (!g.is_object())
+                g = json::object();
+            g["strength"] = strength;
+            if (model)
+                g["direction"] = json::array({down[0], down[1], down[2]});
+            else
+                g["angle"] = angle;
         });
         m_doc.replace(std::move(s), on ? "gravity" : "gravity off");
     });

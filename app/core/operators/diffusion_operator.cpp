@@ -181,8 +181,13 @@ DiffusionOperator compileDiffusion(const Session& session) {
         break;
     }
     // On a model the drift is part of the surface's weights (AtlasWeights::drift).
-    if (session.gravity.active() && !session.atlas)
+    if (session.gravity.active() && !session.atlas) {
+        if (!session.gravity.carrier.empty())
+            throw InputError("gravity.carrier: drops that cling where their carrier is thin run "
+                             "on a model (a session with \"surface\"); on a flat canvas leave "
+                             "out \"carrier\"");
         addGravity(session, op);
+    }
     if (session.gravity.active() && session.atlas &&
         !(session.atlasWeights && session.atlasWeights->drift))
         throw InputError("\"gravity\" on an atlas needs the surface's drift weights (a session "

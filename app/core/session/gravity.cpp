@@ -13,7 +13,7 @@ namespace morphogen {
 
 Gravity gravityFromJson(const FieldReader& top, const nlohmann::json& block) {
     FieldReader reader(block, top.source(), "gravity");
-    reader.rejectUnknown({"angle", "strength", "direction"});
+    reader.rejectUnknown({"angle", "strength", "direction", "carrier", "cling"});
     Gravity g;
     g.angle = reader.number("angle", g.angle, -360.0, 360.0);
     g.strength = reader.number("strength", g.strength, 0.0, kMaxGravityStrength);
@@ -36,6 +36,8 @@ Gravity gravityFromJson(const FieldReader& top, const nlohmann::json& block) {
             bad(d->dump());
         }
     }
+    g.carrier = reader.string("carrier", "");
+    g.cling = reader.number("cling", g.cling, 1e-4, 1e3);
     return g;
 }
 
@@ -43,6 +45,10 @@ nlohmann::json gravityToJson(const Gravity& gravity) {
     nlohmann::json j = {{"angle", gravity.angle}, {"strength", gravity.strength}};
     if (gravity.direction != Gravity{}.direction)
         j["direction"] = gravity.direction;
+    if (!gravity.carrier.empty()) {
+        j["carrier"] = gravity.carrier;
+        j["cling"] = gravity.cling;
+    }
     return j;
 }
 

@@ -25,13 +25,22 @@ struct Kernel5;
 // object space instead (glTF's y up: (0, -1, 0) falls down the model); its
 // length does not matter. The drift is then g's projection on the surface at
 // `strength` (core/surface/surface_drift.hpp).
+//
+// On a model, `carrier` (a chemical's name, e.g. watercolour's "w") makes the
+// drift depend on it: what a texel passes downhill is scaled by the carrier's
+// mobility there, m = w / (w + cling), so a drop's deep head runs while its
+// thin edge and the film it leaves behind cling (Lo's wet trace): the front
+// steepens and a trail stays behind. Empty: every texel drifts alike.
 struct Gravity {
     double angle = 270.0;
     double strength = 0.0; // 0: off
     std::array<double, 3> direction = {0.0, -1.0, 0.0};
+    std::string carrier;
+    double cling = 0.2; // carrier depth at half speed (with a carrier)
     bool active() const { return strength > 0.0; }
     bool operator==(const Gravity& o) const {
-        return angle == o.angle && strength == o.strength && direction == o.direction;
+        return angle == o.angle && strength == o.strength && direction == o.direction &&
+               carrier == o.carrier && cling == o.cling;
     }
     bool operator!=(const Gravity& o) const { return !(*this == o); }
 };

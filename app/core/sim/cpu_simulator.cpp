@@ -379,14 +379,30 @@ float CpuSimulator::atlasTerm(const float* plane, std::uint32_t cell, Stencil st
     return term;
 }
 
+namespace {
+
+// StepConstants::driftCarrier: the carrier's mobility at a texel, as step.frag's.
+inline float mobility(float carrier, float cling) {
+    const float w = std::max(carrier, 0.0f);
+    return w / (w + cling);
+}
+
+} // namespace
+
 float CpuSimulator::driftAt(const float* plane, std::uint32_t cell) const {
     // addDriftRow's order: -x, +x, -y, +y, then the outflow.
     const std::array<std::uint32_t, 4>& n = m_k.domain.atlasMap()->neighbours()[cell];
     const std::size_t cells = m_current.cellCount();
     const float* p = m_k.driftPlanes->data() + cell;
     const float px = p[0], py = p[cells], mx = p[2 * cells], my = p[3 * cells], out = p[4 * cells];
-    return (((mx * plane[n[2]] + px * plane[n[0]]) + my * plane[n[3]]) + py * plane[n[1]]) -
-           out * plane[cell];
+    if (m_k.driftCarrier < 0)
+        return (((mx * plane[n[2]] + px * plane[n[0]]) + my * plane[n[3]]) + py * plane[n[1]]) -
+               out * plane[cell];
+    // What a texel passes on is its amount times its carrier's mobility.
+    const float* w = m_current.plane(m_k.driftCarrier);
+    const float cl = m_k.driftCling;
+    const auto at = [&](std::uint32_t i) { return mobility(w[i], cl) * plane[i]; };
+    return (((mx * at(n[2]) + px * at(n[0])) + my * at(n[3])) + py * at(n[1])) - out * at(cell);
 }
 
 void CpuSimulator::addDriftRow(const float* plane, int y, int chemical, float* out) const {
@@ -412,11 +428,28 @@ void CpuSimulator::addDriftRow(const float* plane, int y, int chemical, float* o
     const float *px = p, *py = p + cells, *mx = p + 2 * cells, *my = p + 3 * cells;
     const float* o = p + 4 * cells;
     // Texels 0 and w - 1 are border or unused texels (unused ones are restored).
+    if (m_k.driftCarrier < 0) {
 #pragma omp simd
-    for (int x = 1; x < w - 1; ++x)
-        out[x] = out[x] + drifts * ((((mx[x] * row[x - 1] + px[x] * row[x + 1]) + my[x] * up[x]) +
-                                     py[x] * down[x]) -
-                                    o[x] * row[x]);
+        for (int x = 1; x < w - 1; ++x)
+            out[x] =
+                out[x] + drifts * ((((mx[x] * row[x - 1] + px[x] * row[x + 1]) + my[x] * up[x]) +
+                                    py[x] * down[x]) -
+                                   o[x] * row[x]);
+    } else {
+        const float* carrier = m_current.plane(m_k.driftCarrier);
+        const float *cu = carrier + (up - plane), *cr = carrier + (row - plane),
+                    *cd = carrier + (down - plane);
+        const float cl = m_k.driftCling;
+#pragma omp simd
+        for (int x = 1; x < w - 1; ++x) {
+            const float l = mobility(cr[x - 1], cl) * row[x - 1];
+            const float r = mobility(cr[x + 1], cl) * row[x + 1];
+            const float u = mobility(cu[x], cl) * up[x], d = mobility(cd[x], cl) * down[x];
+            const float c = mobility(cr[x], cl) * row[x];
+            out[x] =
+                out[x] + drifts * ((((mx[x] * l + px[x] * r) + my[x] * u) + py[x] * d) - o[x] * c);
+        }
+    }
     for (std::size_t b = first; b < end; ++b)
         out[border[b] - start] = before[b - first] + drifts * driftAt(plane, border[b]);
 }

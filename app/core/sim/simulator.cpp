@@ -201,6 +201,28 @@ std::vector<std::array<float, 3>> sessionTensorMixes(const Session& session, con
     return mixes;
 }
 
+namespace {
+
+// The GPU step reads the carrier from the first state texture, next to the
+// chemicals it carries: every drifting chemical and the carrier are among its
+// first four.
+void loadDriftCarrier(StepConstants& k, const Gravity& gravity, const ReactionModel& model) {
+    const int carrier = model.chemicalIndex(gravity.carrier);
+    if (carrier < 0)
+        throw InputError("gravity.carrier: '" + gravity.carrier + "' is not a chemical of " +
+                         model.name() + " (chemicals: " + model.chemicalNames() + ")");
+    for (int c = 0; c < k.chemicals; ++c)
+        if ((k.drifts[std::size_t(c)] != 0.0f || c == carrier) && c >= 4)
+            throw InputError("gravity.carrier: " + model.name() + "'s chemical " +
+                             model.chemicals()[std::size_t(c)].name +
+                             " is past its first four; a carrier needs the carrier and every "
+                             "diffusing chemical among them");
+    k.driftCarrier = carrier;
+    k.driftCling = float(gravity.cling);
+}
+
+} // namespace
+
 StepConstants StepConstants::fromSession(const Session& session) {
     const ReactionModel& model = session.reactionModel();
     StepConstants k;
@@ -235,6 +257,8 @@ StepConstants StepConstants::fromSession(const Session& session) {
             for (int c = 0; c < k.chemicals; ++c)
                 k.drifts[std::size_t(c)] =
                     model.chemicals()[std::size_t(c)].diffusionParam.empty() ? 0.0f : 1.0f;
+            if (!session.gravity.carrier.empty())
+                loadDriftCarrier(k, session.gravity, model);
         }
         if (weights->tensor && k.op.form == DiffusionOperator::Form::Kernel3)
             loadTensorMixes(k, session, *weights);

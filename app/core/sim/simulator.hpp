@@ -93,6 +93,11 @@ struct StepConstants {
     // added after the diffusion term, on both backends.
     std::shared_ptr<const std::vector<float>> driftPlanes;
     std::array<float, kMaxChemicals> drifts = {};
+    // Gravity's carrier (Gravity::carrier), else -1: every u above is then
+    // m(w) u with w the carrier at that texel and m(w) = max(w, 0) / (max(w,
+    // 0) + driftCling), so thin water clings and deep water runs.
+    int driftCarrier = -1;
+    float driftCling = 0.0f;
 
     bool weighted() const { return weightPlanes != nullptr; }
     bool drifting() const { return driftPlanes != nullptr; }
