@@ -343,6 +343,10 @@ TEST(SurfaceDrift, SessionsRecordTheDirectionAndRefuseBadValues) {
     EXPECT_EQ(c.gravity.carrier, "w");
     EXPECT_EQ(c.gravity.cling, 0.7);
     EXPECT_EQ(sessionFromJson(sessionToJson(c), "again").gravity, c.gravity);
+    json clingOnly = j;
+    clingOnly["gravity"]["cling"] = 0.9; // kept without a carrier too
+    const Session co = sessionFromJson(clingOnly, "cling");
+    EXPECT_EQ(sessionFromJson(sessionToJson(co), "again").gravity, co.gravity);
     bad = carried;
     bad["gravity"]["cling"] = 0;
     refused(bad, "gravity.cling");

@@ -45,10 +45,11 @@ nlohmann::json gravityToJson(const Gravity& gravity) {
     nlohmann::json j = {{"angle", gravity.angle}, {"strength", gravity.strength}};
     if (gravity.direction != Gravity{}.direction)
         j["direction"] = gravity.direction;
-    if (!gravity.carrier.empty()) {
+    if (!gravity.carrier.empty())
         j["carrier"] = gravity.carrier;
+    // Written whenever it is not the default, so a session reads back equal.
+    if (!gravity.carrier.empty() || gravity.cling != Gravity{}.cling)
         j["cling"] = gravity.cling;
-    }
     return j;
 }
 
