@@ -73,6 +73,23 @@ if(at EQUAL -1)
   message(SEND_ERROR "drops.glb has no metallicRoughnessTexture for the wet drops")
 endif()
 
+# A frame sequence on the model (--frames): screenshots of the drops as they run;
+# the first and the last differ. A GLB or a turntable with --frames is refused.
+run(0 "" render --preset surface_drops_blob --tiles 300 --tile-size 4 --steps 30 --backend cpu
+    --resolution 64x64 --frames 3 --out run.png)
+foreach(f frame_00000.png frame_00001.png frame_00002.png)
+  if(NOT EXISTS "${WORK}/run_frames/${f}")
+    message(SEND_ERROR "--frames 3 on a mesh did not write run_frames/${f}")
+  endif()
+endforeach()
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files "${WORK}/run_frames/frame_00000.png"
+  "${WORK}/run_frames/frame_00002.png" RESULT_VARIABLE moved)
+if(NOT moved)
+  message(SEND_ERROR "--frames on a mesh: the first and the last frame are the same")
+endif()
+run(2 "--frames on a mesh" render --preset surface_drops_blob --tiles 300 --steps 5 --frames 2
+    --out run.glb)
+
 # Turntable frames, and the options recorded.
 run(0 "" render --mesh sample:sphere --preset turk_large_spots ${small} --turntable 3
     --view 10,30 --no-metric-correction --curvature-scale 0.5 --out turn.png)

@@ -264,10 +264,12 @@ void render(const RenderFlags& flags) {
     const bool image = !f.out.empty(); // without --out, only the texture set is written
     const bool surface = session.surface.active();
     if (surface) {
-        if (!f.textureSet.dir.empty() || f.frames.wanted())
-            throw InputError(std::string(f.frames.wanted() ? "--frames" : "--texture-set") +
-                             " is for flat renders; on a mesh --out takes a screenshot (.png) or "
-                             "the textured model (.glb)");
+        if (!f.textureSet.dir.empty())
+            throw InputError("--texture-set is for flat renders; on a mesh --out takes a "
+                             "screenshot (.png) or the textured model (.glb)");
+        if (f.frames.wanted() && (isModelOutput(f.out) || session.surface.view.turntable > 0))
+            throw InputError("--frames on a mesh draws screenshots from the session's view: give "
+                             "--out a .png and no --turntable");
         checkSurfaceOutput(f.out);
     } else if (image) {
         imageFormatForPath(f.out); // an unsupported extension is bad input, found before the run
@@ -333,8 +335,18 @@ void render(const RenderFlags& flags) {
         options.cancel = interrupt.flag();
         options.chunk = runChunk(session);
         settle.attach(options, progress);
-        result = frames ? renderFrames(session, backend.makeSimulator, options, f.frames, *frames)
-                        : runSession(session, backend.makeSimulator, options);
+        std::optional<SurfaceFrames> surfaceFrames;
+        FrameDrawer draw;
+        if (frames && surface) {
+            surfaceFrames.emplace(*surfaceSetup, backend.context.get(),
+                                  gl::parseContextFlag(f.context));
+            draw = [&](const std::string& path, const RunResult& sofar, float low, float high) {
+                surfaceFrames->draw(path, sofar, low, high);
+            };
+        }
+        result =
+            frames ? renderFrames(session, backend.makeSimulator, options, f.frames, *frames, draw)
+                   : runSession(session, backend.makeSimulator, options);
     }
     const bool cancelled = result.cancelled;
     interrupt.setNotice("\nmorphogen: interrupted while writing: finishing the files (Ctrl-C "
@@ -362,9 +374,13 @@ void render(const RenderFlags& flags) {
         const std::vector<std::string> written =
             writeSurfaceOutput(result, *surfaceSetup, f.out, sessionOut, backend.context.get(),
                                gl::parseContextFlag(f.context), files);
+        if (frames)
+            frames->commit();
         files.commit();
         for (const std::string& path : written)
             std::printf("%s\n", path.c_str());
+        if (frames && !cancelled)
+            encodeVideo(f.frames);
         if (cancelled)
             throw std::runtime_error("interrupted; wrote the state after " +
                                      std::to_string(result.stepsDone) + " steps");

@@ -59,7 +59,8 @@ void prepareFrames(FrameFlags& flags, const std::string& out, const Session& ses
 }
 
 RunResult renderFrames(const Session& session, const SimulatorFactory& makeSimulator,
-                       const RunOptions& options, const FrameFlags& flags, StagedSequence& frames) {
+                       const RunOptions& options, const FrameFlags& flags, StagedSequence& frames,
+                       const FrameDrawer& draw) {
     const std::vector<int> steps =
         frameSteps(sessionTotalSteps(session), flags.frames, flags.every);
     // Levels from the final model (a cascade may change models), fixed for every frame.
@@ -81,6 +82,11 @@ RunResult renderFrames(const Session& session, const SimulatorFactory& makeSimul
             throw BlowUpError(os.str(), sofar.stepsDone, dt);
         }
         checkedStep = sofar.stepsDone;
+        if (draw) {
+            draw(frames.path(index), sofar, levels.low, levels.high);
+            frames.written(index);
+            return;
+        }
         writeColourMapped(frames.path(index),
                           ColourMapRows(sofar.state, colormapChemical(session.colormap, m),
                                         session.colormap, levels.low, levels.high),

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -36,8 +37,14 @@ void prepareFrames(FrameFlags& flags, const std::string& out, const Session& ses
 // runs and a failed run leaves them. Ctrl-C (options.cancel) stops after the
 // current chunk, keeping the frames so far. A frame holding NaN or infinite
 // values is a blow-up (BlowUpError naming the steps), never written.
+//
+// `draw`, when given, writes each frame instead (a session on a model: a
+// screenshot of the model, render_surface.hpp), with the locked levels.
+using FrameDrawer =
+    std::function<void(const std::string& path, const RunResult& sofar, float low, float high)>;
 RunResult renderFrames(const Session& session, const SimulatorFactory& makeSimulator,
-                       const RunOptions& options, const FrameFlags& flags, StagedSequence& frames);
+                       const RunOptions& options, const FrameFlags& flags, StagedSequence& frames,
+                       const FrameDrawer& draw = {});
 
 // Encodes the frames with ffmpeg when it is on PATH, into a temporary renamed
 // into place when ffmpeg succeeds; otherwise prints how to install it and the

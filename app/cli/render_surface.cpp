@@ -34,6 +34,17 @@ std::string framePath(const std::string& out, int frame) {
     return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
 
+// The session's camera as the renderer takes it.
+gl::ViewOptions viewOptions(const SurfaceView& v) {
+    gl::ViewOptions view;
+    view.width = v.width;
+    view.height = v.height;
+    view.azimuth = v.azimuth;
+    view.elevation = v.elevation;
+    view.distance = v.distance;
+    return view;
+}
+
 void writeScreenshot(const gl::SurfaceImage& image, const std::string& path) {
     writeImageRows(path, image.width, image.height, 4, 8, [&](int y, float* row) {
         const std::uint8_t* src = image.rgba.data() + std::size_t(y) * image.width * 4;
@@ -94,12 +105,7 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
             context->makeCurrent();
         else
             own = gl::createHeadlessContext(contextKind);
-        gl::ViewOptions view;
-        view.width = v.width;
-        view.height = v.height;
-        view.azimuth = v.azimuth;
-        view.elevation = v.elevation;
-        view.distance = v.distance;
+        const gl::ViewOptions view = viewOptions(v);
         const gl::SurfaceRenderer renderer(texturedSurface(setup.tiles, c));
         if (v.turntable > 0) {
             const std::vector<gl::SurfaceImage> frames =
@@ -119,6 +125,27 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
         written.push_back(sessionOut);
     }
     return written;
+}
+
+SurfaceFrames::SurfaceFrames(const SurfaceSetup& setup, gl::Context* context,
+                             std::optional<gl::ContextKind> contextKind)
+    : m_setup(setup), m_context(context), m_contextKind(contextKind) {}
+
+SurfaceFrames::~SurfaceFrames() = default;
+
+void SurfaceFrames::draw(const std::string& path, const RunResult& sofar, float low, float high) {
+    if (m_context)
+        m_context->makeCurrent();
+    else if (!m_own)
+        m_own = gl::createHeadlessContext(m_contextKind);
+    const SurfaceColours c = surfaceColours(sofar.state, sofar.completed, *m_setup.tiles.atlas,
+                                            std::make_pair(low, high));
+    const TexturedMesh textured = texturedSurface(m_setup.tiles, c);
+    if (m_renderer)
+        m_renderer->setTextures(textured);
+    else
+        m_renderer = std::make_unique<gl::SurfaceRenderer>(textured);
+    writeScreenshot(m_renderer->render(viewOptions(sofar.completed.surface.view)), path);
 }
 
 } // namespace morphogen::cli

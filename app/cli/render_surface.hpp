@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -7,6 +8,10 @@
 #include "core/sim/runner.hpp"
 #include "core/surface/surface_setup.hpp"
 #include "gl/context.hpp"
+
+namespace morphogen::gl {
+class SurfaceRenderer;
+}
 
 namespace morphogen::cli {
 
@@ -30,5 +35,28 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
                                             gl::Context* context,
                                             std::optional<gl::ContextKind> contextKind,
                                             OutputFiles& files);
+
+// The frames of a run on a model (`render --frames N` with a mesh): each one
+// a screenshot from the session's view, its colours at the frames' locked
+// levels (the relief and a watercolour's water as in the final screenshot),
+// drawn on `context` (null: a headless context of `contextKind`, made on the
+// first frame). The mesh is uploaded once; later frames re-texture it.
+class SurfaceFrames {
+public:
+    SurfaceFrames(const SurfaceSetup& setup, gl::Context* context,
+                  std::optional<gl::ContextKind> contextKind);
+    ~SurfaceFrames();
+    SurfaceFrames(const SurfaceFrames&) = delete;
+    SurfaceFrames& operator=(const SurfaceFrames&) = delete;
+
+    void draw(const std::string& path, const RunResult& sofar, float low, float high);
+
+private:
+    const SurfaceSetup& m_setup;
+    gl::Context* m_context;
+    std::optional<gl::ContextKind> m_contextKind;
+    std::unique_ptr<gl::Context> m_own;
+    std::unique_ptr<gl::SurfaceRenderer> m_renderer;
+};
 
 } // namespace morphogen::cli
