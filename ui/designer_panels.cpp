@@ -311,6 +311,32 @@ void Designer::drawGravityControls(const Session& base) {
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("how fast things run downhill, model units per unit time");
     }
+    // On a model the drift can follow a carrier (Gravity::carrier): none, or
+    // one of the model's first four chemicals (the GPU step reads them there).
+    const ReactionModel& reaction = base.reactionModel();
+    std::vector<std::string> carriers = {"none"};
+    for (int c = 0; c < std::min(4, int(reaction.chemicals().size())); ++c)
+        carriers.push_back(reaction.chemicals()[std::size_t(c)].name);
+    int carrier = 0;
+    for (std::size_t i = 1; i < carriers.size(); ++i)
+        if (carriers[i] == base.gravity.carrier)
+            carrier = int(i);
+    float cling = float(base.gravity.cling);
+    if (on && model) {
+        std::vector<const char*> names;
+        for (const std::string& n : carriers)
+            names.push_back(n.c_str());
+        changed |= ImGui::Combo("carrier", &carrier, names.data(), int(names.size()));
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("the drift follows this chemical: where it is thin, things cling\n"
+                              "(watercolour's w: drops keep a head and leave a wet trail)");
+        if (carrier > 0) {
+            ImGui::DragFloat("cling", &cling, 0.01f, 0.001f, 10.0f, "%.2f deep");
+            changed |= ImGui::IsItemDeactivatedAfterEdit();
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("the carrier's depth at which things run at half speed");
+        }
+    }
     if (!changed)
         return;
     guarded("gravity", [&] {
@@ -324,10 +350,17 @@ void Designer::drawGravityControls(const Session& base) {
             if (!g.is_object())
                 g = json::object();
             g["strength"] = strength;
-            if (model)
+            if (model) {
                 g["direction"] = json::array({down[0], down[1], down[2]});
-            else
+                if (carrier > 0) {
+                    g["carrier"] = carriers[std::size_t(carrier)];
+                    g["cling"] = std::max(cling, 0.001f);
+                } else {
+                    g.erase("carrier");
+                }
+            } else {
                 g["angle"] = angle;
+            }
         });
         m_doc.replace(std::move(s), on ? "gravity" : "gravity off");
     });
