@@ -48,8 +48,9 @@ struct SurfaceImage {
 // handled by the supersampling, and no mip level can mix tiles), Lambert plus
 // a little Blinn-Phong from one directional light, both faces lit (open
 // surfaces); where a mesh has a metallic-roughness texture, its smooth
-// texels shade as water (glsl/surface.frag). Needs a current context for its whole life (EGL or
-// OSMesa); the mesh is uploaded once, then any number of views.
+// texels shade as water (glsl/surface.frag). Needs a current context for its
+// whole life (EGL or OSMesa); the mesh is uploaded once, then any number of
+// views.
 class SurfaceRenderer {
 public:
     // Throws std::invalid_argument for a mesh whose attribute counts or
