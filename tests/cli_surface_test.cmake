@@ -51,7 +51,7 @@ endif()
 # Water drops on a model (surface_drops_blob: gravity in object space, strokes on
 # the surface): a turntable of the wet drops, the GLB with its roughness texture
 # (the water's gloss), and the session recording gravity's direction.
-run(0 "" render --preset surface_drops_blob --tiles 300 --tile-size 4 --steps 20 --backend cpu
+run(0 "" render --preset surface_drops_blob --tiles 150 --tile-size 4 --steps 10 --backend cpu
     --resolution 64x64 --turntable 2 --gravity-direction 0.25,-1,0 --out drops.png)
 foreach(f drops_000.png drops_001.png drops.json)
   if(NOT EXISTS "${WORK}/${f}")
@@ -63,7 +63,7 @@ string(JSON side GET "${session}" gravity direction 0)
 if(NOT side EQUAL 0.25)
   message(SEND_ERROR "drops.json does not record gravity's direction: ${session}")
 endif()
-run(0 "" render --preset surface_drops_blob --tiles 300 --tile-size 4 --steps 20 --backend cpu
+run(0 "" render --preset surface_drops_blob --tiles 150 --tile-size 4 --steps 10 --backend cpu
     --out drops.glb)
 file(READ "${WORK}/drops.glb" glb HEX)
 # "metallicRoughnessTexture" in the JSON chunk, hex-encoded.
@@ -75,7 +75,7 @@ endif()
 
 # A frame sequence on the model (--frames): screenshots of the drops as they run;
 # the first and the last differ. A GLB or a turntable with --frames is refused.
-run(0 "" render --preset surface_drops_blob --tiles 300 --tile-size 4 --steps 30 --backend cpu
+run(0 "" render --preset surface_drops_blob --tiles 150 --tile-size 4 --steps 20 --backend cpu
     --resolution 64x64 --frames 3 --out run.png)
 foreach(f frame_00000.png frame_00001.png frame_00002.png)
   if(NOT EXISTS "${WORK}/run_frames/${f}")

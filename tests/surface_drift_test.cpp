@@ -215,10 +215,11 @@ TEST(SurfaceDrift, ACarrierLeavesATrailBehindASteepFront) {
         r.advance(1);
         const double before = dropOf(s, r.state()).amount;
         r.advance(60 * r.substeps()); // 30 time units
-        const Drop d = dropOf(s, r.state());
+        const State end = r.state(); // a copy: the planes below point into it
+        const Drop d = dropOf(s, end);
         // Moments along the slope, water- and area-weighted.
         double m2 = 0, m3 = 0, behind = 0;
-        const float* w = r.state().plane(M::W);
+        const float* w = end.plane(M::W);
         for (std::uint32_t i = 0; i < s.atlas->cellCount(); ++i) {
             if (!s.atlas->used(i))
                 continue;
