@@ -215,7 +215,7 @@ TEST(SurfaceDrift, ACarrierLeavesATrailBehindASteepFront) {
         r.advance(1);
         const double before = dropOf(s, r.state()).amount;
         r.advance(60 * r.substeps()); // 30 time units
-        const State end = r.state(); // a copy: the planes below point into it
+        const State end = r.state();  // a copy: the planes below point into it
         const Drop d = dropOf(s, end);
         // Moments along the slope, water- and area-weighted.
         double m2 = 0, m3 = 0, behind = 0;

@@ -49,6 +49,9 @@ SurfaceColours surfaceColours(const State& state, const Session& session, const 
     }
     if (!(high > low))
         high = low + 1.0f; // a flat result (warned about already): one colour
+    // The watercolour map accepts only the watercolour model's state (ColourMapRows
+    // checks); its relief is the water's height, set by addWater.
+    const bool water = isWatercolourMap(session.colormap);
     SurfaceColours c;
     c.height.assign(atlas.cellCount(), 0.0f);
     c.colours.assign(atlas.cellCount(), {0, 0, 0, 255});
@@ -60,14 +63,14 @@ SurfaceColours surfaceColours(const State& state, const Session& session, const 
             const std::uint32_t i = atlas.cellAt(x, y);
             if (!atlas.used(i))
                 continue;
-            c.height[i] = std::clamp((plane[i] - low) / (high - low), 0.0f, 1.0f);
+            if (!water)
+                c.height[i] = std::clamp((plane[i] - low) / (high - low), 0.0f, 1.0f);
             for (int k = 0; k < 3; ++k)
                 c.colours[i][k] = std::uint8_t(
                     std::lround(std::clamp(rgb[std::size_t(x) * 3 + k], 0.0f, 1.0f) * 255.0f));
         }
     }
-    // The watercolour map accepts only the watercolour model's state (ColourMapRows checks).
-    if (isWatercolourMap(session.colormap))
+    if (water)
         addWater(state, atlas, c);
     return c;
 }

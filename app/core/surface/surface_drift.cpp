@@ -36,9 +36,7 @@ AtlasDrift surfaceDrift(const SurfaceTiles& tiles, const AtlasWeights& weights,
     for (std::uint32_t i = 0; i < cells; ++i) {
         if (!atlas.used(i))
             continue;
-        Eigen::Matrix<double, 3, 2> J;
-        J.col(0) = tiles.jacobianU[i].cast<double>() * unitsPerWorld;
-        J.col(1) = tiles.jacobianV[i].cast<double>() * unitsPerWorld;
+        const Eigen::Matrix<double, 3, 2> J = texelJacobian(tiles, i, unitsPerWorld);
         const Eigen::Matrix2d metric = J.transpose() * J;
         const double det = metric.determinant();
         if (!(det > 1e-12 * metric.trace() * metric.trace()))

@@ -85,9 +85,7 @@ AtlasTensorWeights surfaceTensorWeights(const SurfaceTiles& tiles, const AtlasWe
     for (std::uint32_t i = 0; i < cells; ++i) {
         if (!atlas.used(i))
             continue;
-        Eigen::Matrix<double, 3, 2> J;
-        J.col(0) = tiles.jacobianU[i].cast<double>() * scale;
-        J.col(1) = tiles.jacobianV[i].cast<double>() * scale;
+        const Eigen::Matrix<double, 3, 2> J = texelJacobian(tiles, i, scale);
         const Eigen::Matrix2d g = J.transpose() * J;
         const double det = g.determinant();
         if (!(det > 0) || !std::isfinite(det))

@@ -36,6 +36,14 @@ double median(std::vector<double> v) {
 
 } // namespace
 
+Eigen::Matrix<double, 3, 2> texelJacobian(const SurfaceTiles& tiles, std::uint32_t cell,
+                                          double unitsPerWorld) {
+    Eigen::Matrix<double, 3, 2> J;
+    J.col(0) = tiles.jacobianU[cell].cast<double>() * unitsPerWorld;
+    J.col(1) = tiles.jacobianV[cell].cast<double>() * unitsPerWorld;
+    return J;
+}
+
 TexelFloors texelFloors(const SurfaceTiles& tiles, double unitsPerWorld) {
     const Atlas& atlas = *tiles.atlas;
     std::vector<double> areas;

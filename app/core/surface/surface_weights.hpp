@@ -1,7 +1,10 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "core/domain/atlas_weights.hpp"
 #include "core/session/gravity.hpp"
@@ -41,6 +44,12 @@ struct TexelFloors {
     double meanArea = 1; // over used texels: the uncorrected weights' texel area
 };
 TexelFloors texelFloors(const SurfaceTiles& tiles, double unitsPerWorld);
+
+// Texel `cell`'s Jacobian [J_u J_v] in model units per texel step (the tiles'
+// world-unit columns times unitsPerWorld): what the tensor and drift weights
+// map tangent vectors through.
+Eigen::Matrix<double, 3, 2> texelJacobian(const SurfaceTiles& tiles, std::uint32_t cell,
+                                          double unitsPerWorld);
 
 // Per-texel weights of the Laplacian on the tiled surface (the AtlasWeights
 // contract: coefficients[i][d] * area[i], and diagonal[i][s] * area[i], is the
