@@ -169,6 +169,43 @@ TEST(AtlasWeightsCpu, StabilityAndSubstepsFollowTheLargestWeightSum) {
     EXPECT_EQ(segmentsOf(unit)[0].substeps, 1);
 }
 
+TEST(AtlasWeightsCpu, CappedSumsKeepEveryFluxAndTheAmount) {
+    // A texel of a third of the area with three times the coefficients (its
+    // neighbours' links to it unchanged: the pair's flux is the same both
+    // ways), as a squeezed texel is: sum 12 needs 3 substeps.
+    auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
+    AtlasWeights w = uniformAtlasWeights(*atlas);
+    const std::uint32_t squeezed = atlas->tileCell(2, 3, 3);
+    w.coefficients[squeezed] = {3.0f, 3.0f, 3.0f, 3.0f};
+    w.area[squeezed] = 1.0f / 3.0f;
+    ASSERT_EQ(weightedSubsteps(w), 3);
+    int capped = 0;
+    float smallest = 0;
+    const AtlasWeights c = capCoefficientSums(w, 4.0f, &capped, &smallest);
+    EXPECT_EQ(capped, 1);
+    EXPECT_NEAR(smallest, 1.0f / 3.0f, 1e-6f);
+    EXPECT_LE(maxCoefficientSum(c), 4.0f);
+    EXPECT_EQ(weightedSubsteps(c), 1);
+    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+        for (std::size_t d = 0; d < 4; ++d)
+            EXPECT_NEAR(c.coefficients[i][d] * c.area[i], w.coefficients[i][d] * w.area[i], 1e-6f);
+    // The capped weights are still valid, and diffusion on them keeps the amount.
+    auto shared = std::make_shared<const AtlasWeights>(c);
+    checkAtlasWeights(*atlas, *shared);
+    const Session s = weighted(test::pureDiffusionSession(atlas), shared);
+    const State start = test::randomUsedState(*atlas, 3);
+    const State end = runOn(s, start, 100);
+    EXPECT_NEAR(test::areaWeightedSum(end, *atlas, c, 0),
+                test::areaWeightedSum(start, *atlas, c, 0),
+                1e-5 * test::areaWeightedSum(start, *atlas, c, 0));
+    // Under the limit nothing changes.
+    const AtlasWeights same = capCoefficientSums(w, 20.0f, &capped, &smallest);
+    EXPECT_EQ(capped, 0);
+    EXPECT_EQ(smallest, 1.0f);
+    EXPECT_EQ(same.coefficients, w.coefficients);
+    EXPECT_EQ(same.area, w.area);
+}
+
 TEST(AtlasWeightsCpu, OperatorsAnAtlasCannotRunAreStillRefusedWithWeights) {
     auto atlas = std::make_shared<const Atlas>(Atlas::cube(8));
     auto unit = std::make_shared<const AtlasWeights>(uniformAtlasWeights(*atlas));

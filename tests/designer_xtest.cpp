@@ -233,7 +233,9 @@ TEST(Designer, CascadeRecordingAndModelExport) {
     bool deformed = false, localized = false;
     for (const LiveEdit& e : edited.edits) {
         // The slider holds a float: 1.8 comes back as 1.7999999523.
-        deformed = deformed || (e.deform && std::abs(e.deform->factor - 1.8) < 1e-6);
+        // The tool stretches under the brush by default: a reach, the brush radius.
+        deformed = deformed ||
+                   (e.deform && std::abs(e.deform->factor - 1.8) < 1e-6 && e.deform->reach > 0);
         localized = localized || (e.stroke && e.stroke->surface && e.stroke->localized);
     }
     EXPECT_TRUE(deformed);

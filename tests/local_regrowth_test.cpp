@@ -339,4 +339,53 @@ TEST(SurfaceDeformEdit, RefusesWhatItCannotDo) {
     m["edits"][0]["deform"]["direction"] = {1, 0, 0};
     m["edits"][0]["deform"]["factor"] = 9;
     EXPECT_NE(refusal(m).find("factor"), std::string::npos) << refusal(m);
+    m["edits"][0]["deform"]["factor"] = 1.5;
+    m["edits"][0]["deform"]["reach"] = -0.1;
+    EXPECT_NE(refusal(m).find("reach"), std::string::npos) << refusal(m);
+}
+
+TEST(SurfaceDeformEdit, ALocalStretchMovesOnlyTheSurfaceNearItAndReplays) {
+    Session s = sphereSession();
+    s.surface.tiles = 400;
+    (void)setUpSurface(s);
+    SessionRun run(s, cpu(), 0);
+    run.advance(20 * run.substeps());
+    const auto positionsBefore = run.segmentSession().atlasPositions;
+    // The slab round z = 0.8 again, but only within 0.15 of the z axis
+    // (fading out at 0.3): the cap round the pole, not the whole ring.
+    LiveEdit local = stretchNearThePole(1.6);
+    local.deform->centre = {0.0, 0.6, 0.8};
+    local.deform->reach = 0.15;
+    run.applyEdit(local);
+    const auto& after = *run.segmentSession().atlasPositions;
+    int moved = 0, far = 0;
+    for (std::size_t i = 0; i < after.size(); ++i) {
+        const auto& p = (*positionsBefore)[i];
+        const double rho = std::hypot(p[0], p[1] - 0.6);
+        const bool same = p == after[i];
+        moved += !same;
+        if (rho >= 0.3) {
+            ++far;
+            EXPECT_TRUE(same) << "texel " << i << " moved at " << rho << " from the axis";
+        }
+    }
+    EXPECT_GT(moved, 0);
+    EXPECT_GT(far, moved); // most of the sphere stays where it was
+    run.advance(10 * run.substeps());
+    // Saved with its reach and replayed to the same state.
+    const nlohmann::json j = sessionToJson(run.completed());
+    ASSERT_TRUE(j["edits"][0]["deform"].contains("reach"));
+    EXPECT_EQ(j["edits"][0]["deform"]["reach"], 0.15);
+    Session again = sessionFromJson(j, "local.json");
+    validateSession(again, "local.json");
+    (void)setUpSurface(again);
+    EXPECT_EQ(test::maxAbsDifference(runSession(again, cpu(), {}).state, run.state()), 0.0f);
+    // A slab across the model writes no reach (sessions from before it read the same).
+    EXPECT_FALSE(sessionToJson([&] {
+                     Session across = s;
+                     across.edits = {stretchNearThePole(1.6)};
+                     across.edits[0].step = 1;
+                     return across;
+                 }())["edits"][0]["deform"]
+                     .contains("reach"));
 }

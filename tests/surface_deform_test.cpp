@@ -8,6 +8,7 @@
 #include <cmath>
 #include <set>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "core/base/errors.hpp"
@@ -193,6 +194,77 @@ TEST(SurfaceDeform, StretchedSpotsKeepTheirWorldSize) {
     EXPECT_GT(setup.tiles.surfaceArea, original.surfaceArea * 1.03);
 }
 
+TEST(SurfaceDeform, ALocalStretchActsUnderItAndNeverFolds) {
+    // The unit sphere, 480 tiles of 8 x 8; stretched along x round the pole
+    // (0, 0, 1), within `reach` of the x axis through it.
+    Session session = loadPreset("turk_small_spots");
+    session.surface.mesh = "sample:sphere";
+    session.surface.tiles = 480;
+    session.surface.tileSize = 8;
+    const SurfaceSetup setup = setUpSurface(session);
+    const Atlas& atlas = *setup.tiles.atlas;
+    const Eigen::Vector3f pole(0, 0, 1);
+    const auto rho = [&](const Eigen::Vector3f& p) {
+        const Eigen::Vector3f q = p - pole;
+        return std::hypot(q.y(), q.z());
+    };
+    for (const float factor : {2.0f, 0.25f, 1.5f}) {
+        SurfaceTiles tiles = setup.tiles;
+        TriangleMesh full = setup.mesh.mesh;
+        SlabStretch s;
+        s.centre = pole;
+        s.direction = Eigen::Vector3f::UnitX();
+        s.radius = 0.2f;
+        s.reach = 0.15f;
+        s.factor = factor;
+        const std::vector<int> deformed = stretchSurface(tiles, full, s);
+        const std::set<int> changed(deformed.begin(), deformed.end());
+        ASSERT_FALSE(deformed.empty());
+        double centreRatio = 0;
+        int centreTexels = 0;
+        for (int t = 0; t < atlas.tileCount(); ++t)
+            for (int v = 0; v < atlas.tileSize(); ++v)
+                for (int u = 0; u < atlas.tileSize(); ++u) {
+                    const std::uint32_t c = atlas.tileCell(t, u, v);
+                    const Eigen::Vector3f& p = setup.tiles.texelPositions[c];
+                    // Beyond the fade nothing moves, bit for bit.
+                    if (rho(p) >= s.reach + s.fadeWidth()) {
+                        ASSERT_EQ(tiles.texelPositions[c], p) << factor;
+                        ASSERT_EQ(tiles.texelNormals[c], setup.tiles.texelNormals[c]) << factor;
+                    }
+                    // Never folds: each texel's parallelogram faces the way the
+                    // map carries the normal (J^-T n, with det J = 1 + (factor - 1)
+                    // w > 0), though a sheared texel may turn far from where it faced.
+                    const Eigen::Vector3f n1 = tiles.jacobianU[c].cross(tiles.jacobianV[c]);
+                    ASSERT_GT(n1.normalized().dot(tiles.texelNormals[c]), 0.5f)
+                        << "texel " << c << " folded at x" << factor;
+                    ASSERT_GT(tiles.texelArea[c], 0.0f);
+                    ASSERT_NEAR(tiles.texelNormals[c].norm(), 1.0f, 1e-5f);
+                    if (!changed.count(t))
+                        ASSERT_EQ(tiles.jacobianU[c], setup.tiles.jacobianU[c]);
+                    // Under the brush: stretched by the factor along x (the
+                    // sphere's tangent plane at the pole), so the area too.
+                    if (rho(p) < 0.5f * s.reach && std::fabs(p.x()) < 0.5f * s.radius) {
+                        centreRatio += tiles.texelArea[c] / setup.tiles.texelArea[c];
+                        ++centreTexels;
+                    }
+                }
+        ASSERT_GT(centreTexels, 4);
+        centreRatio /= centreTexels;
+        std::printf("x%.2f: fade %.2f, %zu tiles deformed of %d, texel area under the brush "
+                    "x%.3f (%d)\n",
+                    factor, s.fadeWidth(), deformed.size(), atlas.tileCount(), centreRatio,
+                    centreTexels);
+        EXPECT_NEAR(centreRatio, factor, 0.05 * factor);
+        // The slab across the model (a band round the whole sphere) changes more
+        // tiles than the local stretch (measured 152 against 100, 76 and 54).
+        SurfaceTiles acrossTiles = setup.tiles;
+        TriangleMesh acrossMesh = setup.mesh.mesh;
+        s.reach = 0;
+        EXPECT_GT(stretchSurface(acrossTiles, acrossMesh, s).size(), deformed.size());
+    }
+}
+
 TEST(SurfaceDeform, RefusesBadStretches) {
     TriangleMesh mesh;
     SurfaceTiles tiles;
@@ -204,5 +276,10 @@ TEST(SurfaceDeform, RefusesBadStretches) {
     EXPECT_THROW(stretchSurface(tiles, mesh, s), InputError);
     s.radius = 1;
     s.direction = Eigen::Vector3f::Zero();
+    EXPECT_THROW(stretchSurface(tiles, mesh, s), InputError);
+    s.direction = Eigen::Vector3f::UnitX();
+    s.reach = -0.5f;
+    EXPECT_THROW(stretchSurface(tiles, mesh, s), InputError);
+    s.reach = std::nanf("");
     EXPECT_THROW(stretchSurface(tiles, mesh, s), InputError);
 }

@@ -36,10 +36,13 @@ struct BrushSettings {
     std::uint64_t seed = 1;
     bool localized = true; // on a model: re-grow locally after a stroke (Lo's localized RD)
     // On a model: a left drag deforms instead of painting (Lo 5.5): the slab
-    // across the model at the drag's start, along the drag, half width the
-    // brush radius, stretched by `stretch` (below 1 compresses).
+    // at the drag's start, along the drag, half width the brush radius,
+    // stretched by `stretch` (below 1 compresses); within the brush radius of
+    // the drag's line (fading out at twice it), or, `across`, the whole slab
+    // across the model.
     bool deform = false;
     float stretch = 1.5f;
+    bool across = false;
     // A model with water "w" and pigments (watercolour): a stroke lays water
     // and a pigment together (the session's "strokes" sugar, live).
     bool watercolour = true;

@@ -161,6 +161,7 @@ void Designer::deformDrag(const std::optional<Eigen::Vector3f>& hit, double worl
     spec.direction = {direction.x(), direction.y(), direction.z()};
     spec.radius = worldRadius;
     spec.factor = m_brush.stretch;
+    spec.reach = m_brush.across ? 0.0 : worldRadius;
     guarded("deform", [&] {
         m_doc.deform(spec);
         m_status = "deformed: stretched by " + std::to_string(m_brush.stretch).substr(0, 4) +

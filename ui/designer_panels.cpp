@@ -549,12 +549,19 @@ void Designer::drawBrushSection() {
         ImGui::Checkbox("deform", &m_brush.deform);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Left drag on the model stretches it instead of painting (Lo 5.5): "
-                              "the slab across the model where the drag starts, along the drag, "
-                              "as wide as the brush; the pattern re-grows there.");
+                              "the surface under the brush where the drag starts, along the "
+                              "drag (fading out at twice the brush radius); the pattern "
+                              "re-grows there.");
         ImGui::SameLine();
         ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
         ImGui::SliderFloat("stretch", &m_brush.stretch, float(kMinDeformFactor),
                            float(kMaxDeformFactor), "x %.2f", ImGuiSliderFlags_Logarithmic);
+        if (m_brush.deform) {
+            ImGui::Checkbox("across the model", &m_brush.across);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("Stretch the whole slab across the model, not only under "
+                                  "the brush: everything beyond it moves rigidly.");
+        }
     }
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("Left drag paints, right or middle drag pans, the wheel zooms, [ and ] "

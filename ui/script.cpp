@@ -33,7 +33,7 @@ const std::map<std::string, std::pair<int, int>> kVerbs = {
     {"drag", {4, 5}},
     {"hover", {2, 2}},
     {"drag-model", {4, 5}},
-    {"deform", {1, 1}},
+    {"deform", {1, 2}},
     {"tab", {1, 1}},
     {"restore-autosave", {0, 0}},
     {"crash", {0, 0}},
@@ -237,6 +237,10 @@ bool ScriptPlayer::start(Designer& d, const ScriptCommand& c) {
                                      std::to_string(kMaxDeformFactor) + ", or off");
                 b.stretch = float(f);
             }
+            if (a.size() > 1 && a[1] != "across" && a[1] != "local")
+                throw InputError("deform " + a[0] + " " + a[1] +
+                                 ": the second word is 'across' (the whole slab) or 'local'");
+            b.across = a.size() > 1 && a[1] == "across";
         } else if (c.verb == "drag" || c.verb == "drag-model") {
             if (c.verb == "drag-model" && !d.hasModel())
                 throw InputError("drag-model needs a session on a mesh (a 3D view)");

@@ -22,7 +22,8 @@ class Designer;
 //   param NAME VALUE            set a parameter (one undo step, as a typed value)
 //   brush MODE [chemical NAME] [param NAME] [value V] [radius R] [falloff F] [localized 0|1]
 //         [watercolour 0|1] [water W] [pigment NAME]   (value: the pigment's amount)
-//   deform FACTOR|off           the deform tool (drag-model stretches the model) or painting
+//   deform FACTOR|off [local|across]  the deform tool (drag-model stretches the model
+//                               under the brush, or the slab across it) or painting
 //   drag X0 Y0 X1 Y1 [FRAMES]   left-drag over the canvas, in canvas fractions (0..1)
 //   hover X Y                   rest the pointer there (outside 0..1: off the canvas)
 //   drag-model X0 Y0 X1 Y1 [FRAMES]  left-drag over the 3D view, in fractions of it

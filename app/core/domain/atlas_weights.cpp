@@ -106,18 +106,54 @@ AtlasWeights uniformAtlasWeights(const Atlas& atlas, float coefficient) {
     return w;
 }
 
+namespace {
+
+// Texel i's sum as maxCoefficientSum counts it.
+float coefficientSum(const AtlasWeights& weights, std::size_t i) {
+    const auto& c = weights.coefficients[i];
+    float sum = ((c[2] + c[0]) + c[3]) + c[1];
+    if (weights.hasDiagonals()) {
+        const auto& k = weights.diagonal[i];
+        sum += (std::abs(k[0]) + std::abs(k[1])) + (std::abs(k[2]) + std::abs(k[3]));
+    }
+    return sum;
+}
+
+} // namespace
+
 float maxCoefficientSum(const AtlasWeights& weights) {
     float worst = 0.0f;
-    for (std::size_t i = 0; i < weights.coefficients.size(); ++i) {
-        const auto& c = weights.coefficients[i];
-        float sum = ((c[2] + c[0]) + c[3]) + c[1];
-        if (weights.hasDiagonals()) {
-            const auto& k = weights.diagonal[i];
-            sum += (std::abs(k[0]) + std::abs(k[1])) + (std::abs(k[2]) + std::abs(k[3]));
-        }
-        worst = std::max(worst, sum);
-    }
+    for (std::size_t i = 0; i < weights.coefficients.size(); ++i)
+        worst = std::max(worst, coefficientSum(weights, i));
     return worst;
+}
+
+AtlasWeights capCoefficientSums(const AtlasWeights& weights, float limit, int* capped,
+                                float* smallest) {
+    assert(limit > 0);
+    AtlasWeights out = weights;
+    int count = 0;
+    float least = 1.0f;
+    for (std::size_t i = 0; i < out.coefficients.size(); ++i) {
+        const float sum = coefficientSum(out, i);
+        if (!(sum > limit))
+            continue;
+        // Scaled a hair below the limit, so the rounded sum does not land above it.
+        const float scale = limit / sum * (1.0f - 1e-6f);
+        for (float& v : out.coefficients[i])
+            v *= scale;
+        if (out.hasDiagonals())
+            for (float& v : out.diagonal[i])
+                v *= scale;
+        out.area[i] /= scale;
+        ++count;
+        least = std::min(least, scale);
+    }
+    if (capped)
+        *capped = count;
+    if (smallest)
+        *smallest = least;
+    return out;
 }
 
 double driftSpectralBound(const AtlasWeights& weights) {

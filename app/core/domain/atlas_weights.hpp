@@ -120,6 +120,18 @@ AtlasWeights uniformAtlasWeights(const Atlas& atlas, float coefficient = 1.0f);
 // similar to a symmetric one through the areas, so its spectrum is real).
 float maxCoefficientSum(const AtlasWeights& weights);
 
+// `weights` with every texel's coefficient sum (as maxCoefficientSum counts
+// it) at most `limit`: a texel above it has its links and diagonals scaled
+// by limit / sum and its area by sum / limit, so every pair's flux, and the
+// amount sum(area u), stay as they were (the texel's neighbours' coefficients
+// towards it are untouched) -- the floors of surface_weights.hpp for a texel
+// squeezed after the weights were made (a deformation in a running session,
+// whose substeps are fixed). The pattern in such a texel diffuses by up to
+// that factor more slowly than its metric says. `capped`: how many changed;
+// `smallest`: the smallest scale applied (1 when none).
+AtlasWeights capCoefficientSums(const AtlasWeights& weights, float limit, int* capped = nullptr,
+                                float* smallest = nullptr);
+
 // Explicit steps per session step on a weighted atlas: ceil(maxCoefficientSum
 // / 4) when above 4 (as ceil(1 / h^2) on a grid finer than one unit), else 1.
 int weightedSubsteps(const AtlasWeights& weights);

@@ -145,7 +145,7 @@ std::array<double, 3> vectorField(const FieldReader& reader, const char* name,
 
 DeformSpec deformFromJson(const FieldReader& edit, const json& block) {
     FieldReader reader(block, edit.source(), edit.path("deform"));
-    reader.rejectUnknown({"centre", "direction", "radius", "factor"});
+    reader.rejectUnknown({"centre", "direction", "radius", "factor", "reach"});
     DeformSpec d;
     d.centre = vectorField(reader, "centre", "must be [x, y, z] on the mesh (its coordinates)");
     d.direction = vectorField(reader, "direction", "must be a non-zero [x, y, z] direction");
@@ -155,6 +155,7 @@ DeformSpec deformFromJson(const FieldReader& edit, const json& block) {
         reader.failField("radius", "is missing (the slab's half width, mesh units)");
     d.radius = reader.number("radius", d.radius, 1e-9, kMaxLength);
     d.factor = reader.number("factor", d.factor, kMinDeformFactor, kMaxDeformFactor);
+    d.reach = reader.number("reach", d.reach, 0.0, kMaxLength);
     return d;
 }
 
@@ -253,11 +254,14 @@ json liveEditsToJson(const std::vector<LiveEdit>& edits) {
             j["dt"] = *e.dt;
         if (e.stroke)
             j["stroke"] = strokeToJson(*e.stroke);
-        if (e.deform)
+        if (e.deform) {
             j["deform"] = {{"centre", e.deform->centre},
                            {"direction", e.deform->direction},
                            {"radius", e.deform->radius},
                            {"factor", e.deform->factor}};
+            if (e.deform->reach > 0)
+                j["deform"]["reach"] = e.deform->reach;
+        }
         array.push_back(std::move(j));
     }
     return array;

@@ -11,16 +11,20 @@ struct AtlasWeights;
 // A deformation of a session's surface (Lo et al. section 5.5) as a live
 // edit records it: the slab |(p - centre) . direction| <= radius of the mesh
 // (its own coordinates and units) stretched along `direction` by `factor`
-// (below 1 compresses); the mesh outside the slab moves rigidly.
+// (below 1 compresses); the mesh outside the slab moves rigidly. With a
+// reach (> 0) only the part of the slab within that distance of its axis
+// stretches, fading out at twice the distance (SlabStretch): a local stretch
+// that leaves the rest of the model where it was.
 struct DeformSpec {
     std::array<double, 3> centre = {0, 0, 0};
     std::array<double, 3> direction = {1, 0, 0};
     double radius = 0.2;
     double factor = 1.5;
+    double reach = 0; // 0: the whole slab across the model
 
     bool operator==(const DeformSpec& o) const {
         return centre == o.centre && direction == o.direction && radius == o.radius &&
-               factor == o.factor;
+               factor == o.factor && reach == o.reach;
     }
 };
 

@@ -62,6 +62,11 @@ void place(Segment& segment, const Session& session, int width, int height, int 
 } // namespace
 
 int atlasSubsteps(const Session& session) {
+    const double ratio = atlasSubstepRatio(session);
+    return ratio > 1.0 ? int(std::ceil(ratio - 1e-9)) : 1;
+}
+
+double atlasSubstepRatio(const Session& session) {
     const AtlasWeights& weights = *session.atlasWeights;
     double ratio = maxCoefficientSum(weights) / 4.0;
     if (weights.tensor && session.diffusion.type == DiffusionType::Anisotropic)
@@ -83,7 +88,7 @@ int atlasSubsteps(const Session& session) {
     // bound / 2 (driftSpectralBound), to the diffusion's (which the session's
     // dt keeps within 1).
     ratio += double(session.dt) * driftSpectralBound(weights) / 2.0;
-    return ratio > 1.0 ? int(std::ceil(ratio - 1e-9)) : 1;
+    return ratio;
 }
 
 int refineSteps() {

@@ -58,6 +58,9 @@ std::vector<Segment> segmentsOf(const Session& session);
 // its weights' limit, with anisotropy its chemicals' mixes', and with a param
 // map of a diffusion rate that map's largest value.
 int atlasSubsteps(const Session& session);
+// The same before rounding up: the explicit limit's share one engine step at
+// the session's dt would take (atlasSubsteps = ceil of it, at least 1).
+double atlasSubstepRatio(const Session& session);
 
 // One line on how `session` reaches its size: units per cell, the base size
 // and the refinement levels, substeps; empty for a session that runs as

@@ -365,13 +365,34 @@ DeformedSurface SessionRun::deformSurface(const DeformSpec& spec) const {
     if (part.integrator == Integrator::ExplicitEuler && d.weights) {
         Session deformed = part;
         useAtlas(deformed, part.atlas, d.weights);
-        const int needed = atlasSubsteps(deformed);
+        int needed = atlasSubsteps(deformed);
+        // A few texels squeezed a little past what the run's substeps hold
+        // (the shear where a local stretch fades, say) take the weights'
+        // floor: their area counts as larger, so their sums fit, the flux of
+        // every pair kept. Isotropic weights only (the limit is their sum's);
+        // a squeeze that would slow a texel's diffusion below half is refused.
+        const double ratio = atlasSubstepRatio(deformed);
+        if (needed > segment.substeps && !d.weights->tensor && !d.weights->drift && ratio > 0) {
+            const float limit =
+                float(double(maxCoefficientSum(*d.weights)) * segment.substeps / ratio);
+            float smallest = 1;
+            auto capped = std::make_shared<const AtlasWeights>(
+                capCoefficientSums(*d.weights, limit, nullptr, &smallest));
+            useAtlas(deformed, part.atlas, capped);
+            if (smallest >= 0.5f && atlasSubsteps(deformed) <= segment.substeps) {
+                d.weights = capped;
+                needed = segment.substeps;
+            }
+        }
         if (needed > segment.substeps)
-            throw InputError("deformation: compressing by " + std::to_string(spec.factor) +
-                             " there needs " + std::to_string(needed) +
-                             " substeps per step and the run takes " +
-                             std::to_string(segment.substeps) +
-                             ": compress less (a factor nearer 1) or over a wider slab");
+            throw InputError(
+                "deformation: " + std::string(spec.factor < 1 ? "compressing" : "stretching") +
+                " by " + std::to_string(spec.factor) +
+                " squeezes texels there (compressed, or sheared where a local stretch fades) "
+                "so that a step needs " +
+                std::to_string(needed) + " substeps and the run takes " +
+                std::to_string(segment.substeps) +
+                ": use a factor nearer 1 or a wider brush (slab)");
     }
     return d;
 }

@@ -35,12 +35,17 @@ DeformedSurface MeshSurface::deformed(const DeformSpec& spec) const {
                                         float(spec.direction[2]));
     stretch.radius = float(spec.radius);
     stretch.factor = float(spec.factor);
+    stretch.reach = float(spec.reach);
     auto copy = std::make_shared<SurfaceSetup>(*m_setup);
     DeformedSurface d;
     d.deformedTiles = stretchSurface(copy->tiles, copy->mesh.mesh, stretch);
     if (d.deformedTiles.empty())
         throw InputError("deformation: the slab of half width " + std::to_string(spec.radius) +
-                         " round the centre holds no tile of the surface");
+                         " round the centre" +
+                         (spec.reach > 0
+                              ? " (within " + std::to_string(2 * spec.reach) + " of its axis)"
+                              : std::string()) +
+                         " holds no tile of the surface");
     SurfaceWeightOptions options = m_options;
     if (!copy->featureScale.empty())
         options.featureScale = &copy->featureScale;

@@ -12,11 +12,51 @@
 
 namespace morphogen {
 
+float SlabStretch::fadeWidth() const {
+    return std::max(reach, 1.5f * std::fabs(factor - 1.0f) * radius);
+}
+
+SlabStretch::Fade SlabStretch::fade(const Eigen::Vector3f& p) const {
+    Fade f;
+    if (!(reach > 0))
+        return f;
+    const Eigen::Vector3f q = p - centre;
+    const Eigen::Vector3f across = q - q.dot(direction) * direction;
+    const float rho = across.norm();
+    const float width = fadeWidth();
+    const float x = std::clamp((rho - reach) / width, 0.0f, 1.0f);
+    f.w = 1.0f - x * x * (3.0f - 2.0f * x);
+    f.slope = -6.0f * x * (1.0f - x) / width;
+    if (rho > 0)
+        f.away = across / rho;
+    return f;
+}
+
 Eigen::Vector3f SlabStretch::apply(const Eigen::Vector3f& p) const {
     const float t = (p - centre).dot(direction);
     const float clamped = std::clamp(t, -radius, radius);
     // Inside: t grows by (factor - 1) t; outside: by the rim's (factor - 1) (+-radius).
-    return p + (factor - 1.0f) * clamped * direction;
+    return p + (factor - 1.0f) * clamped * fade(p).w * direction;
+}
+
+Eigen::Vector3f SlabStretch::normal(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const {
+    const float t = (p - centre).dot(direction);
+    const bool inSlab = std::fabs(t) < radius;
+    const Fade f = fade(p);
+    // grad g = (factor - 1) (w d [inside] + clamp(t) w' away); J = I + d grad(g)^T,
+    // J^-T n = n - grad(g) (d . n) / (1 + d . grad(g)).
+    const Eigen::Vector3f grad =
+        (factor - 1.0f) *
+        ((inSlab ? f.w : 0.0f) * direction + std::clamp(t, -radius, radius) * f.slope * f.away);
+    if (grad.squaredNorm() == 0)
+        return n;
+    return (n - grad * (direction.dot(n) / (1.0f + direction.dot(grad)))).normalized();
+}
+
+bool SlabStretch::deforms(const Eigen::Vector3f& p) const {
+    const Fade f = fade(p);
+    const float t = (p - centre).dot(direction);
+    return f.w > 0 && ((std::fabs(t) < radius) || (f.slope != 0 && t != 0));
 }
 
 std::vector<int> stretchSurface(SurfaceTiles& tiles, TriangleMesh& full,
@@ -30,19 +70,13 @@ std::vector<int> stretchSurface(SurfaceTiles& tiles, TriangleMesh& full,
     if (!(s.factor > 0) || !std::isfinite(s.factor))
         throw InputError("stretch: factor " + std::to_string(s.factor) +
                          " is not accepted (a positive number; 1 leaves the surface as it is)");
+    if (!(s.reach >= 0) || !std::isfinite(s.reach))
+        throw InputError("stretch: reach " + std::to_string(s.reach) +
+                         " is not accepted (a distance in mesh units from the stretch's axis; "
+                         "0 stretches the whole slab across the model)");
     if (!s.direction.allFinite() || !(s.direction.norm() > 0))
         throw InputError("stretch: the direction must be a finite non-zero vector");
     s.direction.normalize();
-    const Eigen::Matrix3f inverseTranspose =
-        Eigen::Matrix3f::Identity() +
-        (1.0f / s.factor - 1.0f) * s.direction * s.direction.transpose();
-    const auto inSlab = [&](const Eigen::Vector3f& p) {
-        return std::fabs((p - s.centre).dot(s.direction)) < s.radius;
-    };
-    const auto normal = [&](const Eigen::Vector3f& p, const Eigen::Vector3f& n) {
-        return inSlab(p) ? Eigen::Vector3f((inverseTranspose * n).normalized()) : n;
-    };
-
     for (auto& p : full.positions)
         p = s.apply(p);
     for (auto& p : tiles.simplified.positions)
@@ -59,8 +93,8 @@ std::vector<int> stretchSurface(SurfaceTiles& tiles, TriangleMesh& full,
         Eigen::Vector3f* gridN = tiles.gridNormals.data() + std::size_t(t) * corners;
         bool changed = false;
         for (std::size_t i = 0; i < corners; ++i) {
-            changed = changed || inSlab(grid[i]);
-            gridN[i] = normal(grid[i], gridN[i]);
+            changed = changed || s.deforms(grid[i]);
+            gridN[i] = s.normal(grid[i], gridN[i]);
             grid[i] = s.apply(grid[i]);
         }
         for (int v = 0; v < n; ++v)
@@ -70,7 +104,7 @@ std::vector<int> stretchSurface(SurfaceTiles& tiles, TriangleMesh& full,
                 const Eigen::Vector3f& c10 = grid[v * (n + 1) + u + 1];
                 const Eigen::Vector3f& c01 = grid[(v + 1) * (n + 1) + u];
                 const Eigen::Vector3f& c11 = grid[(v + 1) * (n + 1) + u + 1];
-                tiles.texelNormals[c] = normal(tiles.texelPositions[c], tiles.texelNormals[c]);
+                tiles.texelNormals[c] = s.normal(tiles.texelPositions[c], tiles.texelNormals[c]);
                 tiles.texelPositions[c] = s.apply(tiles.texelPositions[c]);
                 if (changed) {
                     // As computeSurfaceGeometry: central differences of the corners.

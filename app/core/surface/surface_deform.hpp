@@ -21,13 +21,47 @@ namespace morphogen {
 // `direction`: inside, p -> centre + A (p - centre) with A = I + (factor - 1)
 // d d^T; outside, the two halves move rigidly (by +-(factor - 1) radius d), so
 // the map is continuous and tiles outside the slab keep their shape.
+//
+// With a `reach`, the stretch is local: it acts in full within `reach` of the
+// axis (the line through the centre along the direction) and fades to nothing
+// over fadeWidth() beyond (a smoothstep of the distance rho from the axis),
+// so the model further out stays where it was, as a brush-sized stretch
+// should. The fade is at least `reach` wide and wider for strong factors,
+// 1.5 |factor - 1| radius, which keeps the shear where it fades (up to
+// 1.5 |factor - 1| radius / width) at most 1. A shear squeezes texels across
+// its diagonal (by 1.6x at 1), which raises the explicit step's substeps; a
+// running session's texels squeezed past its substeps take the weights'
+// floor (capCoefficientSums, SessionRun). Measured on the torus preset (8
+// substeps, brush radius 0.12 of the model): with a brush-wide fade a 4x
+// stretch needed 17 substeps; with this one 2x, 2.5x and 4x all run. The map is
+// p + g(p) d with g = (factor - 1) clamp(t, -radius, radius) w(rho); because
+// w depends only on the distance from the axis, grad w is across d and the
+// Jacobian I + d grad(g)^T has determinant 1 + (factor - 1) w (inside the
+// slab) or 1 (outside): positive for every factor > 0, so the surface never
+// folds, however hard it is stretched or compressed. Where w fades the
+// surface shears (that ring of tiles changes shape too).
 struct SlabStretch {
     Eigen::Vector3f centre = Eigen::Vector3f::Zero();
     float radius = 1;
     Eigen::Vector3f direction = Eigen::Vector3f::UnitX(); // normalised by stretchSurface
     float factor = 2;
+    float reach = 0; // 0: the whole slab, across the model
 
     Eigen::Vector3f apply(const Eigen::Vector3f& p) const;
+    // The normal at p carried through the map: J^-T n, normalised.
+    Eigen::Vector3f normal(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const;
+    // Whether the map changes shapes at p (its Jacobian is not I there).
+    bool deforms(const Eigen::Vector3f& p) const;
+    // How far beyond the reach the stretch fades out (reach > 0).
+    float fadeWidth() const;
+
+private:
+    // w(rho) and dw/drho at p, and the unit vector away from the axis.
+    struct Fade {
+        float w = 1, slope = 0;
+        Eigen::Vector3f away = Eigen::Vector3f::Zero();
+    };
+    Fade fade(const Eigen::Vector3f& p) const;
 };
 
 // Moves the full mesh and the tiles' geometry by the stretch: positions
@@ -38,8 +72,8 @@ struct SlabStretch {
 // pattern reads it, and it is not re-derived here). Only tiles with a texel
 // corner in the slab change shape; the others are translated. Returns those
 // tiles (A0 of the re-growth), ascending. Throws InputError for a non-finite
-// centre, a radius or factor that is not positive and finite, or a zero
-// direction.
+// centre, a radius or factor that is not positive and finite, a reach that
+// is negative or not finite, or a zero direction.
 std::vector<int> stretchSurface(SurfaceTiles& tiles, TriangleMesh& full,
                                 const SlabStretch& stretch);
 
