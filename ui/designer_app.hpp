@@ -178,6 +178,9 @@ private:
     void drawPresets();
     void drawHistory();
     void drawMapPanel();
+    // Sets the map's axes to the current model's first two parameters when
+    // the model changed; whether they can be rendered.
+    bool syncMapAxes();
     void drawStatusBar(float y, float h);
     void drawPopups();
     void drawJob();

@@ -9,6 +9,7 @@
 #include <glad/gl.h>
 #include <imgui.h>
 
+#include "core/base/errors.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/exploration_points.hpp"
 #include "ui/coloured_state.hpp"
@@ -27,15 +28,14 @@ ImTextureID textureId(unsigned id) {
 
 } // namespace
 
-void Designer::drawMapPanel() {
+bool Designer::syncMapAxes() {
     const Session& live = m_doc.live();
     const ReactionModel& model = live.reactionModel();
-    if (model.params().size() < 2) {
-        ImGui::TextDisabled("The model has fewer than two parameters.");
-        return;
-    }
+    if (model.params().size() < 2)
+        return false;
     // The axes: the model's first two parameters by default (F and k for
-    // Gray-Scott), each over 0.75 to 1.25 times its current value.
+    // Gray-Scott), each over 0.75 to 1.25 times its current value; a new
+    // model (a preset, a cascade's next stage) starts them afresh.
     if (m_mapModel != model.name()) {
         m_mapModel = model.name();
         m_mapAxes[0].param = model.params()[0].name;
@@ -48,6 +48,18 @@ void Designer::drawMapPanel() {
         }
         m_mapImage = gl::Texture2D();
     }
+    return m_mapAxes[0].param != m_mapAxes[1].param && m_mapAxes[0].min < m_mapAxes[0].max &&
+           m_mapAxes[1].min < m_mapAxes[1].max;
+}
+
+void Designer::drawMapPanel() {
+    const Session& live = m_doc.live();
+    const ReactionModel& model = live.reactionModel();
+    if (model.params().size() < 2) {
+        ImGui::TextDisabled("The model has fewer than two parameters.");
+        return;
+    }
+    syncMapAxes();
     for (int i = 0; i < 2; ++i) {
         MapAxis& a = m_mapAxes[i];
         ImGui::PushID(i);
@@ -124,11 +136,17 @@ void Designer::drawMapPanel() {
                 m_doc.endChange();
             });
     }
-    ImGui::Text("%s %.4g .. %.4g (x), %s %.4g .. %.4g (y)", x.param.c_str(), x.min, x.max,
-                y.param.c_str(), y.min, y.max);
+    ImGui::TextWrapped("%s %.4g .. %.4g (x), %s %.4g .. %.4g (y)", x.param.c_str(), x.min, x.max,
+                       y.param.c_str(), y.min, y.max);
 }
 
 void Designer::renderMap() {
+    // Called by the panel's button and by scripts, perhaps before the panel
+    // was first drawn: the axes must be the model's.
+    if (!syncMapAxes()) {
+        reportError("map: two different parameters of the model, each with min < max");
+        return;
+    }
     Session s = m_doc.live();
     s.colormap = m_doc.liveColormap();
     s.name = "map";
@@ -174,13 +192,36 @@ void Designer::renderMap() {
             const SimulatorFactory cpu = [](const Session& part) {
                 return std::make_unique<CpuSimulator>(part);
             };
-            const RunResult r = runSession(s, cpu, options);
-            if (!r.cancelled) {
-                *pixels = colouredRgba(r.state, colormapChemical(s.colormap, s.outputModel()),
-                                       s.colormap);
-                job->message = "rendered the map";
-            } else {
-                job->message = "map cancelled";
+            // The map runs every pair of values from noise, some of them
+            // stiffer than the session's own (a cascade stage tuned to start
+            // from the stage before it, say): where the session's dt blows up
+            // there, the map is run again at the suggested dt over as much
+            // time, twice at most, rather than failing.
+            Session run = s;
+            for (int attempt = 0;; ++attempt) {
+                try {
+                    const RunResult r = runSession(run, cpu, options);
+                    if (!r.cancelled) {
+                        *pixels =
+                            colouredRgba(r.state, colormapChemical(run.colormap, run.outputModel()),
+                                         run.colormap);
+                        job->message = "rendered the map";
+                        if (run.dt != s.dt)
+                            job->message += " (at dt " + std::to_string(run.dt).substr(0, 6) +
+                                            ": the session's dt " +
+                                            std::to_string(s.dt).substr(0, 6) +
+                                            " blew up in part of it)";
+                    } else {
+                        job->message = "map cancelled";
+                    }
+                    break;
+                } catch (const BlowUpError& e) {
+                    if (attempt == 2 || !(e.suggestedDt() < run.dt))
+                        throw;
+                    const double time = double(s.steps) * double(s.dt);
+                    run.dt = e.suggestedDt();
+                    run.steps = int(std::ceil(time / double(run.dt)));
+                }
             }
         } catch (const std::exception& e) {
             job->message = std::string("map failed: ") + e.what();

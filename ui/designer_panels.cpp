@@ -169,6 +169,14 @@ void Designer::drawModelSection() {
     }
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("%s", model.description().c_str());
+    // A cascade's later stage may run another model: the parameters below are its.
+    const ReactionModel& running = m_doc.live().reactionModel();
+    if (running.name() != model.name()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.75f, 0.35f, 1.0f));
+        ImGui::TextWrapped("now running %s (stage %d; its parameters below)",
+                           running.name().c_str(), m_doc.run().position().segment + 1);
+        ImGui::PopStyleColor();
+    }
 
     int op = operatorIndex(base.diffusion);
     if (ImGui::Combo("operator", &op, kOperatorLabels, IM_ARRAYSIZE(kOperatorLabels)) &&
