@@ -1,5 +1,7 @@
 #include "gl/display.hpp"
 
+#include "core/sim/cpu_simulator.hpp"
+
 #include <cassert>
 #include <string>
 
@@ -7,6 +9,7 @@
 #include "core/io/image_io.hpp"
 #include "core/output/colormap.hpp"
 #include "core/output/watercolour_paint.hpp"
+#include "core/sim/cpu_simulator.hpp"
 #include "gl/gpu_simulator.hpp"
 
 namespace morphogen::gl {
@@ -61,6 +64,8 @@ Display::Display(int width, int height)
 void Display::update(const Simulator& simulator, int chemical, const ColorMapSpec& spec) {
     if (const auto* gpu = dynamic_cast<const GpuSimulator*>(&simulator))
         render(*gpu, chemical, spec);
+    else if (const auto* cpu = dynamic_cast<const CpuSimulator*>(&simulator))
+        upload(cpu->currentState(), chemical, spec);
     else
         upload(simulator.state(), chemical, spec);
 }

@@ -91,6 +91,12 @@ Designer::Designer(const DesignerOptions& options, const DesignerServices& servi
     ImGui::GetStyle().WindowRounding = 0;
     ImGui_ImplGlfw_InitForOpenGL(m_window->window(), true);
     ImGui_ImplOpenGL3_Init("#version 330 core");
+    // Software rasterizers redraw only what changed (partial_redraw.hpp);
+    // MORPHOGEN_FULL_REDRAW=1 draws every frame whole, to compare.
+    const char* full = std::getenv("MORPHOGEN_FULL_REDRAW");
+    if (m_window->isSoftwareRenderer() && !(full && *full && std::string(full) != "0"))
+        m_redraw = std::make_unique<PartialRedraw>(std::vector<std::string>{"Canvas", "Model"},
+                                                   std::vector<std::string>{"Canvas"});
 
     // What to open: the command line's choice, else the session open at the
     // last exit, else the default preset.
@@ -431,10 +437,16 @@ int Designer::run(ScriptPlayer* script) {
         // The panels draw no background of their own (see beginPanel): the
         // clear gives it, as the window colour over the old clear colour.
         const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
-        glClearColor(bg.x * bg.w + 0.09f * (1 - bg.w), bg.y * bg.w + 0.09f * (1 - bg.w),
-                     bg.z * bg.w + 0.1f * (1 - bg.w), 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        const std::array<float, 4> clear = {bg.x * bg.w + 0.09f * (1 - bg.w),
+                                            bg.y * bg.w + 0.09f * (1 - bg.w),
+                                            bg.z * bg.w + 0.1f * (1 - bg.w), 1.0f};
+        if (m_redraw) {
+            m_redraw->render(ImGui::GetDrawData(), clear, fw, fh, !m_pendingScreenshot.empty());
+        } else {
+            glClearColor(clear[0], clear[1], clear[2], clear[3]);
+            glClear(GL_COLOR_BUFFER_BIT);
+            ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        }
         if (!m_pendingScreenshot.empty())
             writeScreenshot();
         if (script) {

@@ -18,6 +18,7 @@
 #include "ui/canvas_view.hpp"
 #include "ui/designer.hpp"
 #include "ui/document.hpp"
+#include "ui/partial_redraw.hpp"
 #include "ui/settings.hpp"
 #include "ui/thumbnails.hpp"
 
@@ -194,6 +195,7 @@ private:
     DesignerServices m_services;
     Settings m_settings;
     std::unique_ptr<gl::GlfwContext> m_window;
+    std::unique_ptr<PartialRedraw> m_redraw; // on a software rasterizer only
     gl::Backend m_backend;
     Document m_doc;
     std::unique_ptr<gl::Display> m_display;

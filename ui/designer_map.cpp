@@ -235,6 +235,8 @@ void Designer::renderMap() {
         m_mapImage = gl::Texture2D(kMapSide, kMapSide, GL_RGBA8);
         m_mapImage.uploadRgba(*pixels);
         m_mapRendered = axes;
+        if (m_redraw)
+            m_redraw->invalidate();
     };
 }
 

@@ -168,9 +168,12 @@ ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpe
       m_levelLow(spec.levels[0]), m_levelScale(1.0f / (spec.levels[1] - spec.levels[0])),
       m_paint(paintsState(spec, state)) {
     const float* p = state.plane(chemical);
-    const std::size_t n = state.cellCount();
+    const std::ptrdiff_t n = std::ptrdiff_t(state.cellCount());
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (std::size_t i = 0; i < n; ++i)
+    // On every core for large states (the designer's display does this each
+    // frame); a min and a max are the same in any order.
+#pragma omp parallel for reduction(min : lo) reduction(max : hi) if (n >= 65536)
+    for (std::ptrdiff_t i = 0; i < n; ++i)
         if (std::isfinite(p[i])) {
             lo = std::min(lo, p[i]);
             hi = std::max(hi, p[i]);

@@ -22,6 +22,10 @@ public:
     std::string backendName() const override { return "cpu"; }
     void setState(const State& state) override;
     State state() const override { return m_current; }
+    // The state without a copy (the designer's display reads it every
+    // frame: 2 MB copied and page-faulted at 512 x 512 x 2); valid until the
+    // simulator next runs or changes.
+    const State& currentState() const { return m_current; }
     State takeState() override;
     std::optional<std::string> insaneValue(const ReactionModel& model) const override;
     void run(int steps) override;
