@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <backends/imgui_impl_opengl3.h>
 #include <glad/gl.h>
@@ -136,14 +137,53 @@ void PartialRedraw::render(ImDrawData* data, const std::array<float, 4>& clear, 
         lists[std::size_t(i)] = {list._OwnerName ? list._OwnerName : "", hashOf(list),
                                  rectOf(list, *data, fbWidth, fbHeight)};
     }
-    const RedrawPlan p = plan(lists, fbWidth, fbHeight, whole);
+    // Did the last frame's marker come back with the buffer?
+    if (m_markerLeft && fbWidth > 0 && fbHeight > 0) {
+        unsigned char rgba[4] = {0, 0, 0, 0};
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+        if (rgba[0] == m_marker[0] && rgba[1] == m_marker[1] && rgba[2] == m_marker[2]) {
+            m_preserved = true;
+        } else if (!m_disabled) {
+            std::fprintf(stderr, "morphogen design: the window's back buffer does not keep its "
+                                 "pixels across a swap here; every frame is drawn whole\n");
+            m_disabled = true;
+        }
+    }
+    const RedrawPlan p = plan(lists, fbWidth, fbHeight, whole || !partial());
     glClearColor(clear[0], clear[1], clear[2], clear[3]);
     if (p.whole) {
         glDisable(GL_SCISSOR_TEST);
         glClear(GL_COLOR_BUFFER_BIT);
         ImGui_ImplOpenGL3_RenderDrawData(data);
-        return;
+    } else {
+        drawPart(data, p, lists);
     }
+    leaveMarker(clear, fbWidth, fbHeight);
+}
+
+void PartialRedraw::leaveMarker(const std::array<float, 4>& clear, int fbWidth, int fbHeight) {
+    m_markerLeft = false;
+    if (m_disabled || fbWidth <= 0 || fbHeight <= 0)
+        return;
+    // The clear colour in 8 bits (the bottom-left pixel is the status line's
+    // background), its blue's lowest bit the frame's parity: a buffer from
+    // two frames ago (a rotating swap chain) reads back the other parity.
+    m_parity ^= 1;
+    for (std::size_t k = 0; k < 3; ++k)
+        m_marker[k] =
+            static_cast<unsigned char>(std::lround(std::clamp(clear[k], 0.0f, 1.0f) * 255));
+    m_marker[2] = static_cast<unsigned char>((m_marker[2] & ~1) | m_parity);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, 1, 1);
+    glClearColor(m_marker[0] / 255.0f, m_marker[1] / 255.0f, m_marker[2] / 255.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
+    m_markerLeft = true;
+}
+
+void PartialRedraw::drawPart(ImDrawData* data, const RedrawPlan& p,
+                             const std::vector<RedrawList>& lists) {
     // An opaque window paints every pixel it owns: clearing it first would
     // rasterize them twice.
     glEnable(GL_SCISSOR_TEST);

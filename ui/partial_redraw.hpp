@@ -22,8 +22,12 @@ namespace morphogen::ui {
 //
 // It relies on the back buffer keeping its pixels across a swap, which
 // Mesa's software GLX does (the swap copies it to the window) and which GL
-// does not promise in general, so the designer uses it only on a software
-// renderer. A frame is drawn whole when any list is new, gone or moved
+// does not promise in general (a swap chain that rotates buffers, as on
+// Wayland), so the designer uses it only on a software renderer, and it
+// checks: every frame leaves a marker in the bottom-left pixel (the frame's
+// parity in the lowest bit of blue, invisible) and the next frame reads it
+// back before drawing; until one has come back, and for good once one does
+// not, every frame is drawn whole. A frame is drawn whole when any list is new, gone or moved
 // (a tooltip, a popup), when a redrawn window overlaps a kept one, when the
 // framebuffer's size changes, for the first frames, after invalidate(), and
 // every kWholeEvery frames (plan(), tests/partial_redraw_test.cpp).
@@ -74,13 +78,25 @@ public:
     // replaced).
     void invalidate();
 
+    // Whether frames are drawn partially: the back buffer was seen to keep
+    // its pixels across a swap, and never seen not to.
+    bool partial() const { return m_preserved && !m_disabled; }
+
 private:
+    void drawPart(ImDrawData* data, const RedrawPlan& plan, const std::vector<RedrawList>& lists);
+    void leaveMarker(const std::array<float, 4>& clear, int fbWidth, int fbHeight);
+
     static constexpr int kWholeEvery = 120;
     std::vector<std::string> m_live, m_opaque;
     std::vector<RedrawList> m_last;
     int m_width = 0, m_height = 0;
     int m_wholeFrames = 2; // frames still drawn whole (both buffers of a swap chain)
     int m_sinceWhole = 0;
+    // The back buffer's marker (see above): the value left, whether one was,
+    // and what the readings said.
+    std::array<unsigned char, 3> m_marker{};
+    bool m_markerLeft = false, m_preserved = false, m_disabled = false;
+    int m_parity = 0;
 };
 
 } // namespace morphogen::ui
