@@ -1,7 +1,5 @@
 #include "gl/display.hpp"
 
-#include "core/sim/cpu_simulator.hpp"
-
 #include <cassert>
 #include <string>
 

@@ -39,8 +39,8 @@ struct BrushSettings {
     // On a model: a left drag deforms instead of painting (Lo 5.5): the slab
     // at the drag's start, along the drag, half width the brush radius,
     // stretched by `stretch` (below 1 compresses); within the brush radius of
-    // the drag's line (fading out at twice it), or, `across`, the whole slab
-    // across the model.
+    // the drag's line (fading out beyond it, SlabStretch), or, `across`, the
+    // whole slab across the model.
     bool deform = false;
     float stretch = 1.5f;
     bool across = false;

@@ -558,8 +558,8 @@ void Designer::drawBrushSection() {
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Left drag on the model stretches it instead of painting (Lo 5.5): "
                               "the surface under the brush where the drag starts, along the "
-                              "drag (fading out at twice the brush radius); the pattern "
-                              "re-grows there.");
+                              "drag (fading out beyond the brush, further for strong "
+                              "stretches); the pattern re-grows there.");
         ImGui::SameLine();
         ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
         ImGui::SliderFloat("stretch", &m_brush.stretch, float(kMinDeformFactor),

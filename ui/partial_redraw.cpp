@@ -97,9 +97,7 @@ RedrawPlan PartialRedraw::plan(const std::vector<RedrawList>& lists, int fbWidth
     whole = whole || m_wholeFrames > 0 || lists.size() != m_last.size() ||
             ++m_sinceWhole >= kWholeEvery;
     for (std::size_t i = 0; !whole && i < lists.size(); ++i)
-        whole = lists[i].name != m_last[i].name ||
-                !(lists[i].rect.x == m_last[i].rect.x && lists[i].rect.y == m_last[i].rect.y &&
-                  lists[i].rect.w == m_last[i].rect.w && lists[i].rect.h == m_last[i].rect.h);
+        whole = lists[i].name != m_last[i].name || !(lists[i].rect == m_last[i].rect);
     const auto named = [](const std::vector<std::string>& names, const std::string& name) {
         return std::find(names.begin(), names.end(), name) != names.end();
     };

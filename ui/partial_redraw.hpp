@@ -42,6 +42,9 @@ struct RedrawRect {
     // separators of windows side by side share (what a lone redraw of one
     // of them changes there is a line's fringe).
     bool overlaps(const RedrawRect& o) const;
+    bool operator==(const RedrawRect& o) const {
+        return x == o.x && y == o.y && w == o.w && h == o.h;
+    }
 };
 
 // One draw list of a frame: its window's name, a hash of what it draws and

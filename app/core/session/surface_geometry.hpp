@@ -13,7 +13,7 @@ struct AtlasWeights;
 // (its own coordinates and units) stretched along `direction` by `factor`
 // (below 1 compresses); the mesh outside the slab moves rigidly. With a
 // reach (> 0) only the part of the slab within that distance of its axis
-// stretches, fading out at twice the distance (SlabStretch): a local stretch
+// stretches, fading out beyond it (SlabStretch::fadeWidth): a local stretch
 // that leaves the rest of the model where it was.
 struct DeformSpec {
     std::array<double, 3> centre = {0, 0, 0};

@@ -371,8 +371,10 @@ DeformedSurface SessionRun::deformSurface(const DeformSpec& spec) const {
         // floor: their area counts as larger, so their sums fit, the flux of
         // every pair kept. Isotropic weights only (the limit is their sum's);
         // a squeeze that would slow a texel's diffusion below half is refused.
-        const double ratio = atlasSubstepRatio(deformed);
-        if (needed > segment.substeps && !d.weights->tensor && !d.weights->drift && ratio > 0) {
+        const double ratio = needed > segment.substeps && !d.weights->tensor && !d.weights->drift
+                                 ? atlasSubstepRatio(deformed)
+                                 : 0.0;
+        if (ratio > 0) {
             const float limit =
                 float(double(maxCoefficientSum(*d.weights)) * segment.substeps / ratio);
             float smallest = 1;

@@ -43,7 +43,8 @@ DeformedSurface MeshSurface::deformed(const DeformSpec& spec) const {
         throw InputError("deformation: the slab of half width " + std::to_string(spec.radius) +
                          " round the centre" +
                          (spec.reach > 0
-                              ? " (within " + std::to_string(2 * spec.reach) + " of its axis)"
+                              ? " (within " + std::to_string(stretch.reach + stretch.fadeWidth()) +
+                                    " of its axis)"
                               : std::string()) +
                          " holds no tile of the surface");
     SurfaceWeightOptions options = m_options;

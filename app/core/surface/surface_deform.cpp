@@ -39,24 +39,24 @@ Eigen::Vector3f SlabStretch::apply(const Eigen::Vector3f& p) const {
     return p + (factor - 1.0f) * clamped * fade(p).w * direction;
 }
 
-Eigen::Vector3f SlabStretch::normal(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const {
+SlabStretch::Moved SlabStretch::move(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const {
     const float t = (p - centre).dot(direction);
+    const float clamped = std::clamp(t, -radius, radius);
     const bool inSlab = std::fabs(t) < radius;
     const Fade f = fade(p);
+    Moved m;
+    m.position = p + (factor - 1.0f) * clamped * f.w * direction;
+    m.deforms = f.w > 0 && (inSlab || (f.slope != 0 && t != 0));
     // grad g = (factor - 1) (w d [inside] + clamp(t) w' away); J = I + d grad(g)^T,
     // J^-T n = n - grad(g) (d . n) / (1 + d . grad(g)).
     const Eigen::Vector3f grad =
-        (factor - 1.0f) *
-        ((inSlab ? f.w : 0.0f) * direction + std::clamp(t, -radius, radius) * f.slope * f.away);
-    if (grad.squaredNorm() == 0)
-        return n;
-    return (n - grad * (direction.dot(n) / (1.0f + direction.dot(grad)))).normalized();
-}
-
-bool SlabStretch::deforms(const Eigen::Vector3f& p) const {
-    const Fade f = fade(p);
-    const float t = (p - centre).dot(direction);
-    return f.w > 0 && ((std::fabs(t) < radius) || (f.slope != 0 && t != 0));
+        (factor - 1.0f) * ((inSlab ? f.w : 0.0f) * direction + clamped * f.slope * f.away);
+    m.normal =
+        grad.squaredNorm() == 0
+            ? n
+            : Eigen::Vector3f(
+                  (n - grad * (direction.dot(n) / (1.0f + direction.dot(grad)))).normalized());
+    return m;
 }
 
 std::vector<int> stretchSurface(SurfaceTiles& tiles, TriangleMesh& full,
@@ -93,9 +93,10 @@ std::vector<int> stretchSurface(SurfaceTiles& tiles, TriangleMesh& full,
         Eigen::Vector3f* gridN = tiles.gridNormals.data() + std::size_t(t) * corners;
         bool changed = false;
         for (std::size_t i = 0; i < corners; ++i) {
-            changed = changed || s.deforms(grid[i]);
-            gridN[i] = s.normal(grid[i], gridN[i]);
-            grid[i] = s.apply(grid[i]);
+            const SlabStretch::Moved m = s.move(grid[i], gridN[i]);
+            changed = changed || m.deforms;
+            gridN[i] = m.normal;
+            grid[i] = m.position;
         }
         for (int v = 0; v < n; ++v)
             for (int u = 0; u < n; ++u) {
@@ -104,8 +105,9 @@ std::vector<int> stretchSurface(SurfaceTiles& tiles, TriangleMesh& full,
                 const Eigen::Vector3f& c10 = grid[v * (n + 1) + u + 1];
                 const Eigen::Vector3f& c01 = grid[(v + 1) * (n + 1) + u];
                 const Eigen::Vector3f& c11 = grid[(v + 1) * (n + 1) + u + 1];
-                tiles.texelNormals[c] = s.normal(tiles.texelPositions[c], tiles.texelNormals[c]);
-                tiles.texelPositions[c] = s.apply(tiles.texelPositions[c]);
+                const SlabStretch::Moved m = s.move(tiles.texelPositions[c], tiles.texelNormals[c]);
+                tiles.texelNormals[c] = m.normal;
+                tiles.texelPositions[c] = m.position;
                 if (changed) {
                     // As computeSurfaceGeometry: central differences of the corners.
                     const Eigen::Vector3f ju = 0.5f * ((c10 - c00) + (c11 - c01));

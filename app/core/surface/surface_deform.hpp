@@ -48,10 +48,14 @@ struct SlabStretch {
     float reach = 0; // 0: the whole slab, across the model
 
     Eigen::Vector3f apply(const Eigen::Vector3f& p) const;
-    // The normal at p carried through the map: J^-T n, normalised.
-    Eigen::Vector3f normal(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const;
-    // Whether the map changes shapes at p (its Jacobian is not I there).
-    bool deforms(const Eigen::Vector3f& p) const;
+    // A point with its normal through the map: where it goes, the normal
+    // J^-T n (normalised), and whether the map changes shapes there (its
+    // Jacobian is not I).
+    struct Moved {
+        Eigen::Vector3f position, normal;
+        bool deforms = false;
+    };
+    Moved move(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const;
     // How far beyond the reach the stretch fades out (reach > 0).
     float fadeWidth() const;
 
