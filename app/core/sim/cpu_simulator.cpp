@@ -26,30 +26,16 @@ bool threaded(const State& state) {
     return state.cellCount() >= 65536;
 }
 
-// Runs band(y0, y1) over the rows in bands of at least 8 rows, 4 per
-// thread, taken by whichever thread is free (one kernel call per band rather
-// than per row). Why not one band per thread: on a machine whose cores also
-// serve other work (the designer's rasterizer and X server, a build) the
-// thread that shares its core finishes late and the other spins at the
-// barrier; measured in the designer on 2 cores, libgomp's spin was a fifth
-// of the process's samples with two static bands, and the designer's
-// steps/s rose by some 6% with 4 bands per thread (8 per thread cost 10-15%
-// in the bench at 256 x 256: a step there takes ~30 us). Rows are
-// independent, so the result is the same bit for bit.
+// Runs band(y0, y1) on one contiguous band of rows per thread, as
+// schedule(static) would split them, with one kernel call per band rather
+// than per row.
 template <class Band> void forEachBand(const State& state, const Band& band) {
     const int h = state.height();
-    if (!threaded(state)) {
-        const FlushDenormals flush;
-        band(0, h);
-        return;
-    }
-#pragma omp parallel
+#pragma omp parallel if (threaded(state))
     {
         const FlushDenormals flush;
-        const int bands = std::max(1, std::min(h / 8, 4 * omp_get_num_threads()));
-#pragma omp for schedule(dynamic, 1)
-        for (int b = 0; b < bands; ++b)
-            band(int(std::int64_t(h) * b / bands), int(std::int64_t(h) * (b + 1) / bands));
+        const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+        band(int(std::int64_t(h) * t / threads), int(std::int64_t(h) * (t + 1) / threads));
     }
 }
 
