@@ -245,8 +245,9 @@ TEST(Designer, CascadeRecordingAndModelExport) {
 TEST(Designer, BenchMeasuresTheDesignerAgainstItsBaseline) {
     // bench's designer rows end to end (small and short: the figures are
     // the bench's business, not a timed test): the designer runs in a child
-    // process under this display at the steps per frame that 80% of the
-    // baseline needs at 30 fps, and in auto; each row has its rates.
+    // process under this display, three times at the steps per frame that 80%
+    // of the baseline needs at 30 fps, then in auto; each row has its rates
+    // against the baselines measured around it, and the goal its count.
     const fs::path dir = work();
     const std::string json = (dir / "designer_bench.json").string();
     std::string err;
@@ -259,9 +260,15 @@ TEST(Designer, BenchMeasuresTheDesignerAgainstItsBaseline) {
         << err;
     const nlohmann::json report = nlohmann::json::parse(readText(json));
     ASSERT_TRUE(report.contains("designer")) << report.dump();
-    const nlohmann::json& rows = report["designer"];
-    ASSERT_EQ(rows.size(), 2u) << rows.dump();
-    EXPECT_EQ(rows[1]["steps_per_frame"], "auto");
+    const nlohmann::json& rows = report["designer"]["runs"];
+    ASSERT_EQ(rows.size(), 4u) << rows.dump();
+    for (int i = 0; i < 3; ++i)
+        EXPECT_EQ(rows[i]["steps_per_frame"], rows[0]["steps_per_frame"]);
+    EXPECT_EQ(rows[3]["steps_per_frame"], "auto");
+    const nlohmann::json& goal = report["designer"]["goal"];
+    EXPECT_EQ(goal["runs"], 3) << goal.dump();
+    EXPECT_GE(goal["runs_meeting_goal"].get<int>(), 0);
+    EXPECT_LE(goal["runs_meeting_goal"].get<int>(), 3);
     for (const nlohmann::json& row : rows) {
         ASSERT_FALSE(row.contains("error")) << row.dump();
         EXPECT_GT(row["baseline_cpu_iterations_per_s"].get<double>(), 0) << row.dump();
