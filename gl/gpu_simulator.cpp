@@ -255,6 +255,24 @@ void GpuSimulator::setFrozen(const std::vector<std::uint8_t>& frozen) {
         buildPrograms(); // the FROZEN variant comes and goes with the mask
 }
 
+int stillTextures(const StepConstants& k) {
+    using Form = DiffusionOperator::Form;
+    // The 3x3 and 5x5 kernels and the tensor operators carry their rates in
+    // their own uniforms: only the Laplacians' term is known to vanish with
+    // a rate of 0.
+    if ((k.op.form != Form::Laplacian5 && k.op.form != Form::Laplacian9) || k.tensorWeighted())
+        return 0;
+    int mask = 0;
+    for (int t = 0; t < stateTextures(k.chemicals); ++t) {
+        bool still = true;
+        for (int c = 4 * t; c < std::min(4 * t + 4, k.chemicals); ++c)
+            still = still && k.op.rates[std::size_t(c)] == 0.0f &&
+                    (!k.drifting() || k.drifts[std::size_t(c)] == 0.0f);
+        mask |= still ? 1 << t : 0;
+    }
+    return mask;
+}
+
 Program GpuSimulator::buildProgram(const char* pass) const {
     const ReactionModel& model = *m_model;
     const Session& session = m_session;
@@ -297,6 +315,8 @@ Program GpuSimulator::buildProgram(const char* pass) const {
         defines.push_back("FROZEN");
     const int textures = stateTextures(m_k.chemicals);
     defines.push_back("STATE_TEXTURES " + std::to_string(textures));
+    if (const int still = stillTextures(m_k); still != 0)
+        defines.push_back("STILL_TEXTURES " + std::to_string(still));
     Program program({embeddedShader("glsl/fullscreen.vert")}, stepFragmentPieces(model, m_k),
                     defines);
 
@@ -547,9 +567,11 @@ void GpuSimulator::updateLiveUniforms() {
 
 void GpuSimulator::applyLiveChange(Session next) {
     // Derived before anything changes: a refused change (InputError) leaves the run as it was.
+    const int still = stillTextures(m_k);
     const bool uniformsOnly = updateLiveConstants(m_k, next);
     m_session = std::move(next);
-    if (uniformsOnly)
+    // A rate that comes or goes changes STILL_TEXTURES.
+    if (uniformsOnly && stillTextures(m_k) == still)
         updateLiveUniforms();
     else
         buildPrograms();

@@ -74,6 +74,12 @@ GLenum stateFormat(int chemicals);
 // State textures a model needs: four chemicals per texture.
 int stateTextures(int chemicals);
 
+// A bit per state texture whose step skips the diffusion term (step.frag's
+// STILL_TEXTURES): none of its chemicals has a rate or drifts, under a
+// Laplacian operator. The watercolour's deposits (texture 1) are the case
+// it is for: their neighbours were fetched and multiplied by 0.
+int stillTextures(const StepConstants& k);
+
 // The product backend: FBO ping-pong over float state textures (several,
 // written together, for models with more than four chemicals). The
 // step program is assembled from glsl/fullscreen.vert, the model's reaction

@@ -69,6 +69,14 @@ uniform sampler2D uState2;
 #error "STATE_TEXTURES must be 1, 2 or 3"
 #endif
 
+// STILL_TEXTURES: a bit per state texture none of whose chemicals diffuses
+// or drifts (the watercolour's deposits): its diffusion term is exactly 0,
+// as the CPU's fused kernels have it, and its neighbours are not fetched.
+#ifndef STILL_TEXTURES
+#define STILL_TEXTURES 0
+#endif
+#define STILL(t) (((STILL_TEXTURES >> (t)) & 1) != 0)
+
 uniform vec2 uInvSize;
 uniform float uDt;
 uniform vec4 uDiffusion[STATE_TEXTURES]; // per-chemical rate (Laplacian variants)
@@ -377,7 +385,8 @@ void main() {
     {                                                                                              \
         vec4 x = texture(state, uv);                                                               \
         outState[t] = clamp(x + uOmega[t] * (texture(rhs, uv) - x +                                 \
-                                             uDt * scale[t] * diffusion(state, t, uv, x)),         \
+                                             uDt * scale[t] *                                      \
+                                                 (STILL(t) ? vec4(0.0) : diffusion(state, t, uv, x))), \
                             uClampMin[t], uClampMax[t]);                                           \
     }
     FOR_EACH_STATE(SWEEP)
@@ -395,7 +404,8 @@ void main() {
     vec4 scale[STATE_TEXTURES];
     rateScale(scale);
 #define STEP(t, state, rhs)                                                                          \
-    outState[t] = clamp(c[t] + uDt * (f[t] + scale[t] * diffusion(state, t, uv, c[t])),            \
+    outState[t] = clamp(c[t] + uDt * (f[t] + scale[t] * (STILL(t) ? vec4(0.0)                     \
+                                                                   : diffusion(state, t, uv, c[t]))), \
                         uClampMin[t], uClampMax[t]);
     FOR_EACH_STATE(STEP)
 }

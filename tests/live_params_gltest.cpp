@@ -3,6 +3,7 @@
 // give the run a simulator built with the new values would give from the same
 // state; the CPU backend agrees.
 
+#include <algorithm>
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -119,6 +120,43 @@ TEST(GpuLiveChanges, AGeneralizedKernelFromZeroRatesIsLive) {
     EXPECT_EQ(gpu.programBuilds(), builds);
     EXPECT_LT(test::maxAbsDifference(gpu.state(), gpuFrom(s, middle, 20)), 1e-5f);
     EXPECT_GT(test::maxAbsDifference(gpu.state(), gpuFrom(still, middle, 20)), 1e-4f);
+}
+
+TEST(GpuLiveChanges, RatesThatComeOrGoRebuildTheStillVariant) {
+    // A state texture none of whose chemicals diffuses skips its diffusion
+    // term (STILL_TEXTURES, the watercolour's deposits): a rate that comes
+    // live must bring the term back, one that goes must drop it.
+    test::glContext();
+    const Session watercolour = test::smallSession("watercolour_wet_in_wet", 32, 40);
+    EXPECT_EQ(gl::stillTextures(StepConstants::fromSession(watercolour)), 2); // d1, d2, g
+    const Session s = test::smallSession("gs_coral", 32, 40);
+    EXPECT_EQ(gl::stillTextures(StepConstants::fromSession(s)), 0);
+    Session still = s;
+    still.params["Du"] = still.params["Dv"] = 0.0f;
+    EXPECT_EQ(gl::stillTextures(StepConstants::fromSession(still)), 1);
+    Session half = s;
+    half.params["Du"] = 0.0f; // v still diffuses: the texture is not still
+    EXPECT_EQ(gl::stillTextures(StepConstants::fromSession(half)), 0);
+
+    gl::GpuSimulator gpu(still);
+    gpu.setState(initial(still));
+    gpu.run(10);
+    const State middle = gpu.state();
+    int builds = gpu.programBuilds();
+    gpu.setParams(s.params);
+    EXPECT_GT(gpu.programBuilds(), builds);
+    gpu.run(20);
+    const State diffused = gpu.state();
+    const float scale = std::max(1.0f, test::maxAbsValue(middle));
+    EXPECT_LT(test::maxAbsDifference(diffused, gpuFrom(s, middle, 20)), 1e-5f * scale);
+    EXPECT_LT(test::maxAbsDifference(diffused, cpuFrom(s, middle, 20)), 1e-4f * scale);
+    EXPECT_GT(test::maxAbsDifference(diffused, gpuFrom(still, middle, 20)), 1e-3f * scale);
+    builds = gpu.programBuilds();
+    gpu.setParams(still.params);
+    EXPECT_GT(gpu.programBuilds(), builds);
+    gpu.run(20);
+    EXPECT_LT(test::maxAbsDifference(gpu.state(), gpuFrom(still, diffused, 20)), 1e-5f * scale);
+    EXPECT_LT(test::maxAbsDifference(gpu.state(), cpuFrom(still, diffused, 20)), 1e-4f * scale);
 }
 
 TEST(GpuLiveChanges, DtChangedMidRunIsAUniformAndTheSemiImplicitWeightFollows) {
