@@ -114,8 +114,12 @@ void Designer::drawModelView(float x, float y, float w, float h) {
         draw->AddCircle(io.MousePos, r, IM_COL32(255, 255, 255, 200), 48, 1.5f);
     }
     ImGui::SetCursorScreenPos(ImVec2(origin.x + 8, origin.y + 6));
+    // Wrapped at the view's right edge (0: the window's): half a 1600-pixel
+    // window cut it off.
+    ImGui::PushTextWrapPos(0.0f);
     ImGui::TextDisabled("%s  |  left drag paints, right drag orbits, wheel zooms, F frames",
                         m_doc.session().surface.mesh.c_str());
+    ImGui::PopTextWrapPos();
     ImGui::End();
 }
 
