@@ -135,11 +135,11 @@ nlohmann::json benchDesigner(const DesignerBench& bench) {
         const bool automatic = round == kRounds; // the auto mode once, last
         const int stepsPerFrame = automatic ? 0 : target;
         const std::string label = automatic ? "auto" : std::to_string(stepsPerFrame);
+        const std::string of = automatic ? ""
+                                         : " (run " + std::to_string(round + 1) + " of " +
+                                               std::to_string(kRounds) + ")";
         std::fprintf(stderr, "bench: designer at %s steps per frame%s...\n", label.c_str(),
-                     automatic ? ""
-                               : (" (run " + std::to_string(round + 1) + " of " +
-                                  std::to_string(kRounds) + ")")
-                                     .c_str());
+                     of.c_str());
         const DesignerRun run = runDesigner(dir, session, stepsPerFrame, frames);
         const double after = measureBaseline();
         lowest = std::min(lowest, after);
