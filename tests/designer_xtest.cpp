@@ -278,6 +278,23 @@ TEST(Designer, BenchMeasuresTheDesignerAgainstItsBaseline) {
                     row["steps_per_s"].get<double>() /
                         row["baseline_cpu_iterations_per_s"].get<double>(),
                     1e-9);
+        // The parts of a frame cover the frame: their sum is the frame period
+        // less only the script's bookkeeping between two frames (a few
+        // percent of it; 20% leaves room for a loaded machine). The two
+        // clocks start and stop a part of a frame apart (the rates count a
+        // frame before its swap, the parts after it) and the parts are
+        // printed to 0.01 ms: 5% over.
+        ASSERT_TRUE(row.contains("frame_ms")) << row.dump();
+        double sum = 0;
+        for (const char* part : {"events", "simulate", "display", "interface", "draw", "present"}) {
+            ASSERT_TRUE(row["frame_ms"].contains(part)) << part << " " << row.dump();
+            EXPECT_GE(row["frame_ms"][part].get<double>(), 0.0) << part << " " << row.dump();
+            sum += row["frame_ms"][part].get<double>();
+        }
+        const double period = 1e3 / row["frames_per_s"].get<double>();
+        EXPECT_LE(sum, period * 1.05) << row.dump();
+        EXPECT_GE(sum, period * 0.8) << row.dump();
+        EXPECT_GT(row["frame_ms"]["simulate"].get<double>(), 0.0) << row.dump();
     }
 }
 

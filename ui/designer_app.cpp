@@ -423,14 +423,19 @@ void Designer::setStepsPerFrame(int steps) {
 
 int Designer::run(ScriptPlayer* script) {
     while (!m_quit && !m_window->shouldClose()) {
+        const Clock::time_point start = Clock::now();
         glfwPollEvents();
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         if (script)
             script->beforeFrame(*this);
         ImGui::NewFrame();
-        frame();
+        const Clock::time_point built = Clock::now();
+        m_frameTimes.events += seconds(built - start);
+        frame(); // adds its simulate and display times
         ImGui::Render();
+        const Clock::time_point rendered = Clock::now();
+        m_frameTimes.interface += seconds(rendered - built);
         const auto [fw, fh] = m_window->framebufferSize();
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glViewport(0, 0, fw, fh);
@@ -449,12 +454,16 @@ int Designer::run(ScriptPlayer* script) {
         }
         if (!m_pendingScreenshot.empty())
             writeScreenshot();
+        const Clock::time_point drawn = Clock::now();
+        m_frameTimes.draw += seconds(drawn - rendered);
         if (script) {
             script->afterFrame(*this);
             if (script->failed())
                 m_quit = true;
         }
         m_window->swapBuffers();
+        m_frameTimes.present += seconds(Clock::now() - drawn);
+        ++m_frameTimes.frames;
     }
     autosave(true);
     // A clean exit: the session goes to last-exit.json, the crash marker away.
@@ -494,9 +503,16 @@ void Designer::frame() {
     }
     (void)frameSeconds;
 
+    // The interface's time is the frame's less these two (see run).
+    const Clock::time_point start = Clock::now();
     simulate();
+    const Clock::time_point simulated = Clock::now();
     handleShortcuts();
     refreshDisplay();
+    const double display = seconds(Clock::now() - simulated);
+    m_frameTimes.simulate += seconds(simulated - start);
+    m_frameTimes.display += display;
+    m_frameTimes.interface -= seconds(simulated - start) + display;
 
     const ImGuiIO& io = ImGui::GetIO();
     const float menuHeight = ImGui::GetFrameHeight();

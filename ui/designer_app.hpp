@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "core/surface/surface_setup.hpp"
 #include "gl/backend.hpp"
@@ -134,6 +135,12 @@ public:
     bool thumbnailsDone() const { return m_thumbnails.rendered() >= m_thumbnails.total(); }
     double fps() const { return m_fps; }
     double stepsPerSecond() const { return m_stepsPerSecond; }
+    // Seconds spent in each part of the frames since the last takeFrameTimes.
+    struct FrameTimes {
+        long long frames = 0;
+        double events = 0, simulate = 0, display = 0, interface = 0, draw = 0, present = 0;
+    };
+    FrameTimes takeFrameTimes() { return std::exchange(m_frameTimes, FrameTimes{}); }
     std::string backendName(); // the status line's: the live run's backend, or "-"
     const CanvasView& canvasView() const { return m_view; }
     // Shows an error in the status line and on stderr; the script fails on it.
@@ -210,6 +217,7 @@ private:
     int m_stepsPerFrame = 0; // 0: automatic
     int m_autoSteps = 1;
     double m_simSeconds = 0;
+    FrameTimes m_frameTimes;
     double m_fps = 0, m_stepsPerSecond = 0;
     std::chrono::steady_clock::time_point m_lastFrame, m_lastRate, m_lastAutosave;
     long long m_stepsAtLastRate = 0;

@@ -388,8 +388,18 @@ void ScriptPlayer::printRates(Designer& d) {
                     m_ratesFrames, steps - m_ratesSteps, span, double(m_ratesFrames) / span,
                     double(steps - m_ratesSteps) / span, d.fps(), d.stepsPerSecond(),
                     d.backendName().c_str());
+        // Where a frame's time went: the interface is ImGui's frame less the
+        // simulation and the display update; a software renderer rasterizes
+        // mostly in draw (glFlush is not called) and present (the swap).
+        const Designer::FrameTimes t = d.takeFrameTimes();
+        const double ms = t.frames > 0 ? 1e3 / double(t.frames) : 0;
+        std::printf("frame: %.2f ms events, %.2f simulate, %.2f display, %.2f interface, "
+                    "%.2f draw, %.2f present (means over %lld frames)\n",
+                    t.events * ms, t.simulate * ms, t.display * ms, t.interface * ms, t.draw * ms,
+                    t.present * ms, t.frames);
         std::fflush(stdout);
-    }
+    } else
+        d.takeFrameTimes(); // the clock starts here for these too
     m_ratesSince = now;
     m_ratesSteps = steps;
     m_ratesFrames = 0;

@@ -1,6 +1,7 @@
 #include "cli/bench_designer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -27,8 +28,15 @@ namespace fs = std::filesystem;
 struct DesignerRun {
     bool ok = false;
     double fps = 0, stepsPerSecond = 0;
+    // Milliseconds per frame in each part (the script's `frame:` line): where
+    // the time that is not the simulation's goes.
+    std::array<double, 6> frameMs{};
+    bool frameKnown = false;
     std::string error;
 };
+
+constexpr std::array<const char*, 6> kFrameParts = {"events",    "simulate", "display",
+                                                    "interface", "draw",     "present"};
 
 std::string quoted(const std::string& s) {
     std::string q = "'";
@@ -63,10 +71,13 @@ DesignerRun runDesigner(const fs::path& dir, const fs::path& session, int stepsP
     DesignerRun run;
     const int status = std::system(command.c_str());
     std::ifstream in(out);
-    std::string line, last;
-    while (std::getline(in, line))
+    std::string line, last, frame;
+    while (std::getline(in, line)) {
         if (line.rfind("rates:", 0) == 0)
             last = line;
+        else if (line.rfind("frame:", 0) == 0)
+            frame = line;
+    }
     long long f = 0, steps = 0;
     double span = 0;
     if (status != 0 || last.empty() ||
@@ -84,6 +95,11 @@ DesignerRun runDesigner(const fs::path& dir, const fs::path& session, int stepsP
         return run;
     }
     run.ok = true;
+    std::array<double, 6>& t = run.frameMs;
+    run.frameKnown = std::sscanf(frame.c_str(),
+                                 "frame: %lf ms events, %lf simulate, %lf display, %lf interface, "
+                                 "%lf draw, %lf present",
+                                 &t[0], &t[1], &t[2], &t[3], &t[4], &t[5]) == 6;
     run.fps = double(f) / span;
     run.stepsPerSecond = double(steps) / span;
     return run;
@@ -157,6 +173,16 @@ nlohmann::json benchDesigner(const DesignerBench& bench) {
             row["frames_per_s"] = run.fps;
             row["steps_per_s"] = run.stepsPerSecond;
             row["over_baseline"] = run.stepsPerSecond / baseline;
+            if (run.frameKnown) {
+                nlohmann::json parts;
+                std::printf("%-30s frame ms:", "");
+                for (std::size_t k = 0; k < kFrameParts.size(); ++k) {
+                    parts[kFrameParts[k]] = run.frameMs[k];
+                    std::printf(" %s %.2f", kFrameParts[k], run.frameMs[k]);
+                }
+                std::printf("\n");
+                row["frame_ms"] = parts;
+            }
             if (!automatic) {
                 ratios.push_back(run.stepsPerSecond / baseline);
                 rates.push_back(run.fps);
