@@ -389,8 +389,9 @@ void ScriptPlayer::printRates(Designer& d) {
                     double(steps - m_ratesSteps) / span, d.fps(), d.stepsPerSecond(),
                     d.backendName().c_str());
         // Where a frame's time went: the interface is ImGui's frame less the
-        // simulation and the display update; a software renderer rasterizes
-        // mostly in draw (glFlush is not called) and present (the swap).
+        // simulation and the display update; draw submits the frame's GL
+        // commands, and a software renderer rasterizes them in present (the
+        // swap flushes them) before it copies the frame out.
         const Designer::FrameTimes t = d.takeFrameTimes();
         const double ms = t.frames > 0 ? 1e3 / double(t.frames) : 0;
         std::printf("frame: %.2f ms events, %.2f simulate, %.2f display, %.2f interface, "
