@@ -408,12 +408,24 @@ void Designer::drawDirectionControls(const Session& base) {
 void Designer::drawParamsSection() {
     const Session& live = m_doc.live();
     const ReactionModel& model = live.reactionModel();
+    // Each row is slider, typed field, name. The field is as wide as the
+    // longest value it shows and the names get their longest width, so the
+    // panel's edge clips the slider, never a number ("evaporation" left the
+    // field 3 characters: 0.002 read as 0.00).
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float fieldWidth = ImGui::CalcTextSize("-0.000000").x + 2 * style.FramePadding.x;
+    float nameWidth = ImGui::CalcTextSize("dt").x;
+    for (const ParamSpec& p : model.params())
+        nameWidth = std::max(nameWidth, ImGui::CalcTextSize(p.name.c_str()).x);
+    const float avail = ImGui::GetContentRegionAvail().x;
+    const float sliderWidth =
+        std::max(avail * 0.35f, avail - fieldWidth - nameWidth - 2 * style.ItemInnerSpacing.x);
     for (const ParamSpec& p : model.params()) {
         float value = live.params.at(p.name);
         ImGui::PushID(p.name.c_str());
-        ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.62f);
+        ImGui::SetNextItemWidth(sliderWidth);
         // Ctrl+click types a value; the range is the model's.
-        const bool changed = ImGui::SliderFloat(p.name.c_str(), &value, p.min, p.max, "%.5g",
+        const bool changed = ImGui::SliderFloat("##slider", &value, p.min, p.max, "%.5g",
                                                 p.max / std::max(p.min, 1e-9f) > 1000 && p.min > 0
                                                     ? ImGuiSliderFlags_Logarithmic
                                                     : ImGuiSliderFlags_None);
@@ -423,11 +435,14 @@ void Designer::drawParamsSection() {
             guarded("parameter", [&] { m_doc.setParam(p.name, std::clamp(value, p.min, p.max)); });
         if (ImGui::IsItemDeactivated())
             m_doc.endChange();
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("%s\nrange %g .. %g, default %g\nCtrl+click to type a value",
-                              p.description.c_str(), p.min, p.max, p.defaultValue);
-        ImGui::SameLine();
-        ImGui::SetNextItemWidth(-1);
+        const auto tooltip = [&] {
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("%s\nrange %g .. %g, default %g\nCtrl+click to type a value",
+                                  p.description.c_str(), p.min, p.max, p.defaultValue);
+        };
+        tooltip();
+        ImGui::SameLine(0, style.ItemInnerSpacing.x);
+        ImGui::SetNextItemWidth(fieldWidth);
         float typed = value;
         if (ImGui::InputFloat("##typed", &typed, 0, 0, "%.6g",
                               ImGuiInputTextFlags_EnterReturnsTrue) &&
@@ -438,11 +453,14 @@ void Designer::drawParamsSection() {
             else
                 changeParam(p.name, typed);
         }
+        ImGui::SameLine(0, style.ItemInnerSpacing.x);
+        ImGui::TextUnformatted(p.name.c_str());
+        tooltip();
         ImGui::PopID();
     }
     // dt, as a session dt (the run divides it among substeps).
     float dt = live.dt * float(m_doc.run().substeps());
-    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.62f);
+    ImGui::SetNextItemWidth(sliderWidth + fieldWidth + style.ItemInnerSpacing.x);
     const bool changed =
         ImGui::SliderFloat("dt", &dt, 0.001f, 4.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
     if (ImGui::IsItemActivated())
