@@ -3,14 +3,19 @@
 // sizes, the written session as the session's own steps, and the pattern's
 // scale in units kept across sizes.
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/analysis/pattern_stats.hpp"
 #include "core/base/errors.hpp"
+#include "core/operators/diffusion_operator.hpp"
+#include "core/operators/stability.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/runner.hpp"
 #include "core/sim/segments.hpp"
 #include "core/sim/session_run.hpp"
+#include "core/sim/stability_check.hpp"
 #include "test_support.hpp"
 
 using namespace morphogen;
@@ -175,4 +180,46 @@ TEST(Segments, TheWavelengthInUnitsIsTheSameAtEverySize) {
     EXPECT_NEAR(d.wavelength, own.wavelength, 0.05 * own.wavelength);
     EXPECT_NEAR(r.features, own.features, 0.1 * own.features);
     EXPECT_NEAR(d.features, own.features, 0.1 * own.features);
+}
+
+// McGraw's rank-4 set (d) grows as 1/h^4 on finer grids: each level takes the
+// substeps its own explicit limit needs, so the session's dt is not capped
+// for the whole run (it was: a 1024 render of gs_generalized_d ran at 1/64 of
+// its dt, its base simulated 1/64 of the time and the maze never grew). The
+// base of a large render is then the preset's own run, step for step.
+TEST(Segments, AHigherOrderOperatorTakesTheSubstepsItsLevelNeeds) {
+    for (int size : {192, 256, 1024}) {
+        SCOPED_TRACE(size);
+        Session s = loadPreset("gs_generalized_d"); // 128 units wide, dt 0.15
+        const Session native = s;
+        resizeSession(s, size, size);
+        Session checked = s;
+        const StabilityReport report = checkSessionStability(checked, false);
+        EXPECT_FALSE(report.capped);
+        EXPECT_FALSE(report.refused.has_value());
+        EXPECT_FLOAT_EQ(checked.dt, native.dt);
+        const std::vector<Segment> segments = segmentsOf(s);
+        // The session's simulated time at its base: steps x dt unchanged.
+        EXPECT_EQ(segments.front().session.steps, segments.front().substeps * native.steps);
+        for (const Segment& segment : segments) {
+            const double h = segment.session.gridSpacing;
+            const Session& level = segment.session;
+            const std::optional<double> limit =
+                explicitStability(compileDiffusion(level), level.domain(), level.dt).maxStableDt;
+            ASSERT_TRUE(limit.has_value());
+            EXPECT_LE(level.dt, *limit) << "at h " << h;
+            if (h < 1.0) // more than the 1/h^2 of a second-order operator
+                EXPECT_GT(segment.substeps, int(std::ceil(1.0 / (h * h))));
+            EXPECT_FLOAT_EQ(segment.sessionDt, native.dt);
+        }
+        if (size == 256)
+            EXPECT_EQ(segments.front().session.width, 128); // the base: the preset's own run
+    }
+    // A second-order set keeps 1/h^2: (a) is the isotropic reference.
+    Session a = loadPreset("gs_generalized_a");
+    resizeSession(a, 4 * a.width, 4 * a.height);
+    const std::vector<Segment> segments = segmentsOf(a);
+    ASSERT_EQ(segments.size(), 3u);
+    EXPECT_EQ(segments[1].substeps, 4);
+    EXPECT_EQ(segments[2].substeps, 16);
 }

@@ -8,6 +8,8 @@
 
 #include "core/base/errors.hpp"
 #include "core/domain/atlas_weights.hpp"
+#include "core/operators/diffusion_operator.hpp"
+#include "core/operators/stability.hpp"
 #include "core/sim/simulator.hpp"
 
 namespace morphogen {
@@ -36,6 +38,36 @@ int substepsAt(const Session& session, double h) {
     return int(std::ceil(1.0 / (h * h) - 1e-9));
 }
 
+// McGraw's generalized operators of rank 3 and 4 have terms that grow as
+// 1/h^3 and 1/h^4 on a finer grid, faster than the 1/h^2 substepsAt counts on,
+// so at ceil(1/h^2) substeps the session's dt would be over the level's limit
+// and the stability check would cap it for the whole run: a 1024 render of a
+// 128-unit rank-4 preset simulated 1/64 of its time and never grew its
+// pattern. Such a level takes as many substeps as its explicit limit is below
+// the limit of the same operator at one cell per unit (both on the level's
+// Fourier modes), so a dt stable at the base stays stable at every size and
+// the simulated time stays the same. `level` is the segment's session, placed.
+int higherOrderSubsteps(const Session& level, int substeps) {
+    if (level.integrator != Integrator::ExplicitEuler ||
+        level.diffusion.type != DiffusionType::Generalized || level.gridSpacing >= 1.0 ||
+        level.atlas || level.tiles.active())
+        return substeps;
+    Session unit = level;
+    unit.gridSpacing = 1.0;
+    const Domain domain = level.domain();
+    const std::optional<double> fine =
+        explicitStability(compileDiffusion(level), domain, level.dt).maxStableDt;
+    const std::optional<double> base =
+        explicitStability(compileDiffusion(unit), domain, level.dt).maxStableDt;
+    if (!fine || !base || !(*fine > 0.0))
+        return substeps; // an operator that grows for every dt: the check refuses it
+    // The tolerance keeps a second-order operator at exactly 1/h^2 (4, not 5).
+    const double ratio = *base / *fine * (1.0 - 1e-6);
+    if (!(ratio < double(INT_MAX)))
+        return INT_MAX;
+    return std::max(substeps, int(std::ceil(ratio)));
+}
+
 int scaledSteps(long long steps, int substeps, int width, int height) {
     const long long n = steps * substeps;
     if (n > INT_MAX)
@@ -53,7 +85,7 @@ void place(Segment& segment, const Session& session, int width, int height, int 
     s.width = width;
     s.height = height;
     s.gridSpacing = cellSizeAt(session, width);
-    segment.substeps = substepsAt(session, s.gridSpacing);
+    segment.substeps = higherOrderSubsteps(s, substepsAt(session, s.gridSpacing));
     segment.sessionDt = s.dt;
     s.dt = float(double(s.dt) / segment.substeps);
     s.steps = scaledSteps(sessionSteps, segment.substeps, width, height);
