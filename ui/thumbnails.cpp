@@ -65,6 +65,31 @@ std::optional<std::vector<float>> readCached(const std::string& path) {
     }
 }
 
+// The size a preset's thumbnail runs at: kSize, or a multiple of it that
+// keeps a cell at most 2 units wide (a 256-unit Gray-Scott coral at 64 cells
+// is 4 units a cell and grows dots instead of its labyrinth), up to 4 kSize.
+int renderSize(const Session& s) {
+    int factor = 1;
+    while (factor < 4 && s.length > 0 && s.length / (Thumbnails::kSize * factor) > 2.0)
+        factor *= 2;
+    return Thumbnails::kSize * factor;
+}
+
+// A factor x factor box average of kSize * factor square RGBA rows.
+std::vector<float> shrunk(const std::vector<float>& rgba, int factor) {
+    if (factor <= 1)
+        return rgba;
+    const int from = Thumbnails::kSize * factor;
+    std::vector<float> out(std::size_t(Thumbnails::kSize) * Thumbnails::kSize * 4, 0.0f);
+    const float weight = 1.0f / float(factor * factor);
+    for (int y = 0; y < from; ++y)
+        for (int x = 0; x < from; ++x)
+            for (int c = 0; c < 4; ++c)
+                out[(std::size_t(y / factor) * Thumbnails::kSize + std::size_t(x / factor)) * 4 +
+                    std::size_t(c)] += weight * rgba[(std::size_t(y) * from + x) * 4 + c];
+    return out;
+}
+
 } // namespace
 
 Thumbnails::~Thumbnails() {
@@ -111,7 +136,7 @@ void Thumbnails::work(std::vector<Session> presets) {
                 s.surface.tileSize = 4;
                 setup = setUpSurface(s);
             } else {
-                resizeSession(s, kSize, kSize);
+                resizeSession(s, renderSize(s), renderSize(s));
             }
             RunOptions options;
             options.cancel = &m_stop;
@@ -127,8 +152,10 @@ void Thumbnails::work(std::vector<Session> presets) {
                 ++m_rendered;
                 continue;
             }
-            std::vector<float> rgba = colouredRgba(
-                result.state, colormapChemical(s.colormap, s.outputModel()), s.colormap);
+            std::vector<float> rgba =
+                shrunk(colouredRgba(result.state, colormapChemical(s.colormap, s.outputModel()),
+                                    s.colormap),
+                       s.width / kSize);
             keep(s.name, rgba);
             std::lock_guard<std::mutex> lock(m_mutex);
             m_pending[s.name] = std::move(rgba);

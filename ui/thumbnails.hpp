@@ -16,12 +16,12 @@ namespace morphogen::ui {
 
 // The presets browser's thumbnails, rendered by the engine: each preset run
 // at kSize x kSize on the CPU backend (the same pattern at a small size: the
-// sessions are resolution independent) on a worker thread with one OpenMP
-// thread, so the window and the live run keep going. A preset on a model
-// runs on the model's tiles at a small budget (kSurfaceTiles: the same
-// pattern, coarser), and its picture is the textured model rendered on the
-// main thread, which holds the GL context. The textures are made on the
-// main thread as the pictures arrive.
+// sessions are resolution independent; a preset more than 2 kSize units wide
+// runs at 2 or 4 kSize, at most 2 units a cell, and is averaged down) on a worker thread with one
+// OpenMP thread, so the window and the live run keep going. A preset on a model runs on the model's
+// tiles at a small budget (kSurfaceTiles: the same pattern, coarser), and its picture is the
+// textured model rendered on the main thread, which holds the GL context. The textures are made on
+// the main thread as the pictures arrive.
 //
 // Each finished picture is kept as a PNG in the cache folder, named by the
 // preset and a hash of its session JSON (with the thumbnail settings and
@@ -33,7 +33,7 @@ class Thumbnails {
 public:
     static constexpr int kSize = 64;
     static constexpr int kSurfaceTiles = 150;
-    static constexpr int kCacheVersion = 1;
+    static constexpr int kCacheVersion = 2; // 2: presets wider than 128 units at 2 units a cell
 
     Thumbnails() = default;
     ~Thumbnails(); // stops the worker after the preset it is on
