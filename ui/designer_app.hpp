@@ -268,6 +268,9 @@ private:
     State m_readout; // the state under the cursor's readout, refreshed ten times a second
     std::chrono::steady_clock::time_point m_lastReadout;
     std::string m_presetFilter;
+    // The preset the list last scrolled to: a preset opened from the menu,
+    // the command line or a script is brought into view once.
+    std::string m_presetRevealed;
     float m_controlsWidth = 340, m_sideWidth = 300;
 };
 

@@ -307,6 +307,11 @@ void Designer::drawPresets() {
             if (current || hovered)
                 ImGui::GetWindowDrawList()->AddRectFilled(
                     lo, hi, current ? IM_COL32(66, 150, 250, 60) : IM_COL32(255, 255, 255, 25));
+            if (current && m_presetRevealed != s->name) {
+                m_presetRevealed = s->name;
+                if (!ImGui::IsRectVisible(lo, hi))
+                    ImGui::SetScrollHereY(0.25f);
+            }
             if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left))
                 openPreset(s->name);
             ImGui::Dummy(ImVec2(0, 2));

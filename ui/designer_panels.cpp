@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 
 #include <imgui.h>
 #include <nlohmann/json.hpp>
 
 #include "core/base/errors.hpp"
+#include "core/base/limits.hpp"
 #include "core/base/names.hpp"
 #include "core/models/builtin_models.hpp"
 #include "core/numerics/propagator.hpp"
@@ -458,17 +460,52 @@ void Designer::drawParamsSection() {
         tooltip();
         ImGui::PopID();
     }
-    // dt, as a session dt (the run divides it among substeps).
+    // dt, as a session dt (the run divides it among substeps), in the same
+    // slider | typed field | name row as the parameters.
     float dt = live.dt * float(m_doc.run().substeps());
-    ImGui::SetNextItemWidth(sliderWidth + fieldWidth + style.ItemInnerSpacing.x);
+    ImGui::PushID("dt");
+    ImGui::SetNextItemWidth(sliderWidth);
     const bool changed =
-        ImGui::SliderFloat("dt", &dt, 0.001f, 4.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
+        ImGui::SliderFloat("##slider", &dt, 0.001f, 4.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
     if (ImGui::IsItemActivated())
         m_doc.beginChange("change dt");
     if (changed)
         guarded("dt", [&] { m_doc.setDt(std::max(dt, 1e-4f)); });
     if (ImGui::IsItemDeactivated())
         m_doc.endChange();
+    ImGui::SameLine(0, style.ItemInnerSpacing.x);
+    ImGui::SetNextItemWidth(fieldWidth);
+    float typedDt = dt;
+    if (ImGui::InputFloat("##typed", &typedDt, 0, 0, "%.6g",
+                          ImGuiInputTextFlags_EnterReturnsTrue) &&
+        typedDt != dt) {
+        // The bounds a session file accepts, so what is typed can be saved and reopened.
+        if (!(typedDt >= float(kMinDt) && typedDt <= float(kMaxDt))) {
+            char text[160];
+            std::snprintf(text, sizeof text,
+                          "dt = %g is outside %g .. %g (the stability line says how large it "
+                          "can be)",
+                          double(typedDt), kMinDt, kMaxDt);
+            reportError(text);
+        } else {
+            guarded("dt", [&] {
+                m_doc.beginChange("change dt");
+                try {
+                    m_doc.setDt(typedDt);
+                } catch (...) {
+                    m_doc.endChange();
+                    throw;
+                }
+                m_doc.endChange();
+            });
+        }
+    }
+    ImGui::SameLine(0, style.ItemInnerSpacing.x);
+    ImGui::TextUnformatted("dt");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "the session's time step: drag (0.001 .. 4) or type a value (1e-06 .. 100)");
+    ImGui::PopID();
 
     // The stability report of the values in force, as the CLI checks them:
     // recomputed when a setting or the running stage changes, not per frame.
