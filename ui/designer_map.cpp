@@ -136,8 +136,9 @@ void Designer::drawMapPanel() {
                 m_doc.endChange();
             });
     }
-    ImGui::TextWrapped("%s %.4g .. %.4g (x), %s %.4g .. %.4g (y)", x.param.c_str(), x.min, x.max,
-                       y.param.c_str(), y.min, y.max);
+    // One axis a line: wrapped as one sentence, a narrow panel broke a number in two.
+    ImGui::Text("%s %.4g .. %.4g (x)", x.param.c_str(), x.min, x.max);
+    ImGui::Text("%s %.4g .. %.4g (y)", y.param.c_str(), y.min, y.max);
 }
 
 void Designer::renderMap() {

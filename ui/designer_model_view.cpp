@@ -5,6 +5,7 @@
 // across tile seams, recorded as a surface stroke of the session).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <glad/gl.h>
@@ -114,11 +115,26 @@ void Designer::drawModelView(float x, float y, float w, float h) {
         draw->AddCircle(io.MousePos, r, IM_COL32(255, 255, 255, 200), 48, 1.5f);
     }
     ImGui::SetCursorScreenPos(ImVec2(origin.x + 8, origin.y + 6));
-    // Wrapped at the view's right edge (0: the window's): half a 1600-pixel
-    // window cut it off.
+    // Kept inside the view (half a 1600-pixel window cut it off), and wrapped
+    // phrase by phrase: wrapped at spaces, "F frames" broke into "F" and "frames".
     ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextDisabled("%s  |  left drag paints, right drag orbits, wheel zooms, F frames",
-                        m_doc.session().surface.mesh.c_str());
+    const std::string& mesh = m_doc.session().surface.mesh;
+    const std::array<const char*, 4> hints = {"left drag paints", "right drag orbits",
+                                              "wheel zooms", "F frames"};
+    ImGui::TextDisabled("%s", mesh.c_str());
+    const float right = origin.x + size.x - 8;
+    for (const char* hint : hints) {
+        const float width = ImGui::CalcTextSize(hint).x + ImGui::CalcTextSize("  |  ").x;
+        ImGui::SameLine();
+        if (ImGui::GetCursorScreenPos().x + width > right) {
+            ImGui::NewLine();
+            ImGui::SetCursorScreenPos(ImVec2(origin.x + 8, ImGui::GetCursorScreenPos().y));
+        } else {
+            ImGui::TextDisabled(" | ");
+            ImGui::SameLine();
+        }
+        ImGui::TextDisabled("%s", hint);
+    }
     ImGui::PopTextWrapPos();
     ImGui::End();
 }
