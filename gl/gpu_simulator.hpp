@@ -154,6 +154,7 @@ private:
     void setLiveUniforms(const Program& program) const;
     void updateLiveUniforms();
     const Session& liveSession() const override { return m_session; }
+    const StepConstants& stepConstants() const override { return m_k; }
     void applyLiveChange(Session next) override;
     mutable int m_programBuilds = 0;
 };

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/base/errors.hpp"
+#include "core/session/param_map.hpp"
 #include "core/sim/brush.hpp"
 #include "test_support.hpp"
 
@@ -250,6 +251,37 @@ void checkPaintedParameters(const SimulatorFactory& make) {
         EXPECT_GT(inside, 40);
         EXPECT_GT(changed, inside / 2);
     }
+}
+
+void checkCellParams(const SimulatorFactory& make) {
+    Session s = smallSession("gs_coral", 20, 3);
+    s.width = 24;
+    auto sim = started(make, s, 2);
+    const float uniform = s.params.at("F");
+    EXPECT_FALSE(sim->cellParam("F", 3, 4));
+    EXPECT_FALSE(sim->cellParam("k", 3, 4));
+
+    const Disc d = {8.0f, 9.0f, 3.0f, 0.0f};
+    sim->applyBrush(paintBrush(s, d, "F", 0.09f));
+    ASSERT_TRUE(sim->cellParam("F", 8, 9));
+    EXPECT_NEAR(*sim->cellParam("F", 8, 9), 0.09f, 1e-6f);
+    ASSERT_TRUE(sim->cellParam("F", 20, 2));
+    EXPECT_FLOAT_EQ(*sim->cellParam("F", 20, 2), uniform);
+    EXPECT_FALSE(sim->cellParam("k", 8, 9));
+    EXPECT_FALSE(sim->cellParam("F", 24, 0));
+    EXPECT_FALSE(sim->cellParam("F", 0, -1));
+
+    Session mapped = s;
+    mapped.paramMaps["k"] = {ParamMapSpec::Field::LinearX, 0.05f, 0.07f};
+    auto withMap = started(make, mapped, 1);
+    const std::vector<float> k =
+        evaluateParamMap(mapped.paramMaps.at("k"), mapped.width, mapped.height, mapped.seed,
+                         mapped.baseDir, mapped.layoutCellSize());
+    for (const auto [x, y] : {std::pair{0, 0}, std::pair{23, 5}, std::pair{11, 19}}) {
+        ASSERT_TRUE(withMap->cellParam("k", x, y));
+        EXPECT_FLOAT_EQ(*withMap->cellParam("k", x, y), k[std::size_t(y * mapped.width + x)]);
+    }
+    EXPECT_NEAR(*withMap->cellParam("k", 23, 0), 0.07f, 1e-6f);
 }
 
 void checkBadBrushes(const SimulatorFactory& make) {

@@ -22,6 +22,10 @@ void checkHoldAndRelease(const SimulatorFactory& make);
 // after one step only the disc's cells differ from a run whose map holds the
 // uniform value everywhere; that map run stays close to the unmapped one.
 void checkPaintedParameters(const SimulatorFactory& make);
+// Simulator::cellParam (the designer's readout): nullopt for a uniform
+// parameter; a session's param map's values; a painted disc's value inside it
+// and the uniform value round it; nullopt off the grid.
+void checkCellParams(const SimulatorFactory& make);
 // Bad brushes throw InputError and leave the state as it was.
 void checkBadBrushes(const SimulatorFactory& make);
 

@@ -67,6 +67,10 @@ TEST(GpuBrush, PaintedParametersChangeTheDynamicsOnlyInTheRegion) {
     test::checkPaintedParameters(gpu());
 }
 
+TEST(GpuBrush, CellParamsAreTheValuesTheStepUses) {
+    test::checkCellParams(gpu());
+}
+
 TEST(GpuBrush, BadBrushesAreRefused) {
     test::checkBadBrushes(gpu());
 }

@@ -129,6 +129,10 @@ TEST(CpuBrush, PaintedParametersChangeTheDynamicsOnlyInTheRegion) {
     test::checkPaintedParameters(cpu());
 }
 
+TEST(CpuBrush, CellParamsAreTheValuesTheStepUses) {
+    test::checkCellParams(cpu());
+}
+
 TEST(CpuBrush, BadBrushesAreRefused) {
     test::checkBadBrushes(cpu());
 }

@@ -403,16 +403,8 @@ void Designer::redo() {
 }
 
 void Designer::changeParam(const std::string& name, float value) {
-    guarded("parameter", [&] {
-        m_doc.beginChange("change " + name);
-        try {
-            m_doc.setParam(name, value);
-        } catch (...) {
-            m_doc.endChange();
-            throw;
-        }
-        m_doc.endChange();
-    });
+    guarded("parameter",
+            [&] { m_doc.changeOnce("change " + name, [&] { m_doc.setParam(name, value); }); });
 }
 
 void Designer::setStepsPerFrame(int steps) {

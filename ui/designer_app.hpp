@@ -176,9 +176,6 @@ private:
                          const Atlas& atlas) const;
     // The brush settings as a stroke (chemical and parameter names resolved).
     StrokeSpec strokeFromBrush() const;
-    // A mapped or swept parameter's value at cell (x, y) (row 0 at the top), or
-    // nullopt where it is uniform or a field on a model.
-    std::optional<float> localParam(const std::string& name, int x, int y);
     // The watercolour brush's pigment, laid with the water of strokeFromBrush.
     std::optional<StrokeSpec> companionFromBrush() const;
     bool watercolourBrush() const;
@@ -269,8 +266,6 @@ private:
                      // 1: canvas, 2: model
     std::vector<Session> m_presets;
     State m_readout; // the state under the cursor's readout, refreshed ten times a second
-    // The readout's evaluated param maps, each with the spec, size and seed it is for.
-    std::map<std::string, std::pair<std::string, std::vector<float>>> m_readoutMaps;
     std::chrono::steady_clock::time_point m_lastReadout;
     std::string m_presetFilter;
     // The preset the list last scrolled to: a preset opened from the menu,

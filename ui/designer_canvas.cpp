@@ -10,9 +10,6 @@
 #include <imgui.h>
 
 #include "core/base/names.hpp"
-#include <nlohmann/json.hpp>
-
-#include "core/session/param_map.hpp"
 #include "ui/designer_app.hpp"
 #include "ui/layout_window.hpp"
 
@@ -180,17 +177,17 @@ void Designer::drawCanvas(float x, float y, float w, float h) {
                                   m_readout.at(c, wx, wy));
                     text += line;
                 }
+                // A parameter that varies per cell shows the value the step uses
+                // there (a map's, a painted one's, a sweep tile's), not the
+                // base value the map replaces.
+                const Simulator* simulator =
+                    m_doc.run().finished() ? nullptr : &m_doc.run().simulator();
                 for (const auto& [name, value] : live.params) {
+                    const std::optional<float> here =
+                        simulator ? simulator->cellParam(name, wx, wy) : std::nullopt;
                     char line[96];
-                    const std::optional<float> local = localParam(name, wx, wy);
-                    if (local)
-                        std::snprintf(line, sizeof line, "\n%s = %.5g here (%s)", name.c_str(),
-                                      *local, live.tiles.params.count(name) ? "tile" : "map");
-                    else if (live.paramMaps.count(name))
-                        std::snprintf(line, sizeof line, "\n%s varies (a map on the model)",
-                                      name.c_str());
-                    else
-                        std::snprintf(line, sizeof line, "\n%s = %.5g", name.c_str(), value);
+                    std::snprintf(line, sizeof line, "\n%s = %.5g%s", name.c_str(),
+                                  here ? *here : value, here ? " here" : "");
                     text += line;
                 }
                 ImGui::SetTooltip("%s", text.c_str());
@@ -204,32 +201,6 @@ void Designer::drawCanvas(float x, float y, float w, float h) {
                            m_doc.history().step(*m_scrub));
     }
     ImGui::End();
-}
-
-std::optional<float> Designer::localParam(const std::string& name, int x, int y) {
-    // The value the step uses at a cell: a map's or a sweep tile's, not the
-    // session's base value (which the map replaces).
-    const Session& live = m_doc.live();
-    if (live.tiles.active() && live.tiles.params.count(name)) {
-        const int tx = x * live.tiles.columns / std::max(1, live.width);
-        const int ty = y * live.tiles.rows / std::max(1, live.height); // from the top
-        return live.tiles.value(name, tx, live.tiles.rows - 1 - ty);
-    }
-    const auto spec = live.paramMaps.find(name);
-    if (spec == live.paramMaps.end() || live.atlas)
-        return std::nullopt;
-    // Evaluated once per map, size and seed (the readout asks every frame).
-    const std::string key = paramMapsToJson({{name, spec->second}}).dump() + " " +
-                            std::to_string(live.width) + "x" + std::to_string(live.height) + " " +
-                            std::to_string(live.seed) + " " + live.baseDir;
-    std::pair<std::string, std::vector<float>>& cached = m_readoutMaps[name];
-    if (cached.first != key) {
-        cached.second = evaluateParamMap(spec->second, live.width, live.height, live.seed,
-                                         live.baseDir, live.layoutCellSize());
-        cached.first = key;
-    }
-    const std::size_t i = std::size_t(y) * std::size_t(live.width) + std::size_t(x);
-    return i < cached.second.size() ? std::optional<float>(cached.second[i]) : std::nullopt;
 }
 
 StrokeSpec Designer::strokeFromBrush() const {

@@ -125,15 +125,10 @@ void Designer::drawMapPanel() {
         if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && live.reactionModel().param(x.param) &&
             live.reactionModel().param(y.param))
             guarded("map", [&] {
-                m_doc.beginChange("map point");
-                try {
+                m_doc.changeOnce("map point", [&] {
                     m_doc.setParam(x.param, ax);
                     m_doc.setParam(y.param, ay);
-                } catch (...) {
-                    m_doc.endChange();
-                    throw;
-                }
-                m_doc.endChange();
+                });
             });
     }
     // One axis a line: wrapped as one sentence, a narrow panel broke a number in two.

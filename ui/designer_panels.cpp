@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include <imgui.h>
 #include <nlohmann/json.hpp>
@@ -84,6 +85,18 @@ void drawPropagator(const std::string& set) {
     } catch (const std::exception& e) {
         ImGui::TextWrapped("no propagator: %s", e.what());
     }
+}
+
+// The typed field right of a slider: the value entered (with Enter) where it
+// differs from `value`.
+std::optional<float> typedField(float value, float width) {
+    ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
+    ImGui::SetNextItemWidth(width);
+    float typed = value;
+    if (ImGui::InputFloat("##typed", &typed, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue) &&
+        typed != value)
+        return typed;
+    return std::nullopt;
 }
 
 } // namespace
@@ -443,17 +456,12 @@ void Designer::drawParamsSection() {
                                   p.description.c_str(), p.min, p.max, p.defaultValue);
         };
         tooltip();
-        ImGui::SameLine(0, style.ItemInnerSpacing.x);
-        ImGui::SetNextItemWidth(fieldWidth);
-        float typed = value;
-        if (ImGui::InputFloat("##typed", &typed, 0, 0, "%.6g",
-                              ImGuiInputTextFlags_EnterReturnsTrue) &&
-            typed != value) {
-            if (typed < p.min || typed > p.max)
-                reportError(p.name + " = " + std::to_string(typed) + " is outside its range " +
+        if (const std::optional<float> typed = typedField(value, fieldWidth)) {
+            if (*typed < p.min || *typed > p.max)
+                reportError(p.name + " = " + std::to_string(*typed) + " is outside its range " +
                             std::to_string(p.min) + " .. " + std::to_string(p.max));
             else
-                changeParam(p.name, typed);
+                changeParam(p.name, *typed);
         }
         ImGui::SameLine(0, style.ItemInnerSpacing.x);
         ImGui::TextUnformatted(p.name.c_str());
@@ -473,31 +481,17 @@ void Designer::drawParamsSection() {
         guarded("dt", [&] { m_doc.setDt(std::max(dt, 1e-4f)); });
     if (ImGui::IsItemDeactivated())
         m_doc.endChange();
-    ImGui::SameLine(0, style.ItemInnerSpacing.x);
-    ImGui::SetNextItemWidth(fieldWidth);
-    float typedDt = dt;
-    if (ImGui::InputFloat("##typed", &typedDt, 0, 0, "%.6g",
-                          ImGuiInputTextFlags_EnterReturnsTrue) &&
-        typedDt != dt) {
+    if (const std::optional<float> typed = typedField(dt, fieldWidth)) {
         // The bounds a session file accepts, so what is typed can be saved and reopened.
-        if (!(typedDt >= float(kMinDt) && typedDt <= float(kMaxDt))) {
+        if (!(*typed >= float(kMinDt) && *typed <= float(kMaxDt))) {
             char text[160];
             std::snprintf(text, sizeof text,
                           "dt = %g is outside %g .. %g (the stability line says how large it "
                           "can be)",
-                          double(typedDt), kMinDt, kMaxDt);
+                          double(*typed), kMinDt, kMaxDt);
             reportError(text);
         } else {
-            guarded("dt", [&] {
-                m_doc.beginChange("change dt");
-                try {
-                    m_doc.setDt(typedDt);
-                } catch (...) {
-                    m_doc.endChange();
-                    throw;
-                }
-                m_doc.endChange();
-            });
+            guarded("dt", [&] { m_doc.changeOnce("change dt", [&] { m_doc.setDt(*typed); }); });
         }
     }
     ImGui::SameLine(0, style.ItemInnerSpacing.x);

@@ -137,6 +137,17 @@ void Document::setDt(float dt) {
     changed();
 }
 
+void Document::changeOnce(const std::string& label, const std::function<void()>& apply) {
+    beginChange(label);
+    try {
+        apply();
+    } catch (...) {
+        endChange();
+        throw;
+    }
+    endChange();
+}
+
 void Document::endChange() {
     if (!m_change)
         return;

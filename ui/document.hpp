@@ -69,6 +69,9 @@ public:
     void setParam(const std::string& name, float value);
     void setDt(float dt);
     void endChange();
+    // A typed value or a click: beginChange, `apply` (setParam, setDt), then
+    // endChange, also when `apply` throws (which it rethrows).
+    void changeOnce(const std::string& label, const std::function<void()>& apply);
 
     // A brush stroke: begin, extend by the points the cursor crossed since
     // the last call (each extension is one brush write on the cells it

@@ -67,6 +67,7 @@ private:
     // false where the one-pass row kernels must run instead.
     bool runTilesApart(int steps);
     const Session& liveSession() const override { return m_session; }
+    const StepConstants& stepConstants() const override { return m_k; }
     void applyLiveChange(Session next) override;
 
     // runTilesApart: one simulator per tile (row-major from the bottom row),

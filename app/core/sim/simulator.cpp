@@ -11,6 +11,7 @@
 #include "core/operators/stability.hpp"
 #include "core/session/param_map.hpp"
 #include "core/session/surface_geometry.hpp"
+#include "core/sim/brush.hpp"
 
 namespace morphogen {
 
@@ -322,6 +323,14 @@ std::vector<int> checkActiveTiles(const Domain& domain, const std::vector<int>& 
 
 std::optional<std::string> Simulator::insaneValue(const ReactionModel& model) const {
     return findInsaneValue(state(), model);
+}
+
+std::optional<float> Simulator::cellParam(const std::string& name, int x, int y) const {
+    const StepConstants& k = stepConstants();
+    const int m = mappedIndex(k, liveSession().reactionModel(), name);
+    if (m < 0 || x < 0 || y < 0 || x >= k.paramMaps.width() || y >= k.paramMaps.height())
+        return std::nullopt;
+    return k.paramMaps.at(m, x, y);
 }
 
 } // namespace morphogen

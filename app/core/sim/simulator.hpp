@@ -166,9 +166,16 @@ public:
         applyLiveChange(std::move(next));
     }
 
+    // The value parameter `name` has at cell (x, y), row 0 at the top, where it
+    // varies per cell (a param map, one painted with the brush, a sweep's
+    // tiles); nullopt where it is uniform (Session::params holds it then).
+    std::optional<float> cellParam(const std::string& name, int x, int y) const;
+
 protected:
     // The session the simulator runs now (live changes and painted maps applied).
     virtual const Session& liveSession() const = 0;
+    // The constants the steps run with, painted maps included.
+    virtual const StepConstants& stepConstants() const = 0;
     // Takes a session that differs from liveSession() in params or dt only.
     virtual void applyLiveChange(Session next) = 0;
 };
