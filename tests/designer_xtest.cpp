@@ -6,6 +6,7 @@
 // the very same image file.
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -49,15 +50,18 @@ std::string readText(const fs::path& path) {
     return s.str();
 }
 
-// Runs the morphogen binary with `args`; returns its exit code, its stderr in `err`.
-int runMorphogen(const std::string& args, std::string* err = nullptr) {
-    const fs::path log = work() / "stderr.txt";
+// Runs the morphogen binary with `args`; returns its exit code, its stderr in
+// `err` and its stdout in `out`.
+int runMorphogen(const std::string& args, std::string* err = nullptr, std::string* out = nullptr) {
+    const fs::path log = work() / "stderr.txt", printed = work() / "stdout.txt";
     // A hung designer fails its test in two minutes rather than the suite's limit.
     const std::string command = "timeout 120 " + std::string(MORPHOGEN_BINARY) + " " + args +
-                                " 2> " + log.string() + " > /dev/null";
+                                " 2> " + log.string() + " > " + printed.string();
     const int status = std::system(command.c_str());
     if (err)
         *err = readText(log);
+    if (out)
+        *out = readText(printed);
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
@@ -341,6 +345,38 @@ TEST(Designer, ACrashLosesAtMostTheAutosaveInterval) {
               sessionToJson(autosaved).dump());
     // The clean exit removed the crash marker.
     EXPECT_FALSE(fs::exists(dir / "s4" / "autosave.json"));
+}
+
+// The rates count the steps the simulation ran, not the run's step number,
+// which opening a preset takes back to 0 (the status line showed a negative
+// steps/s for half a second after every preset, reset or branch).
+TEST(Designer, RatesCountStepsRunAcrossAPresetChange) {
+    const fs::path dir = work();
+    writeText(dir / "rates.txt", "preset gs_coral\nsteps-per-frame 20\nplay\nuntil-step 400\n"
+                                 "rates\npreset gs_mitosis\nsteps-per-frame 20\nplay\n"
+                                 "frames 5\nrates\nquit\n");
+    std::string err, out;
+    ASSERT_EQ(runMorphogen("design --backend cpu --script " + (dir / "rates.txt").string() +
+                               " --config-dir " + (dir / "c5").string() + " --state-dir " +
+                               (dir / "s5").string(),
+                           &err, &out),
+              0)
+        << err;
+    const std::size_t at = out.find("rates: ");
+    ASSERT_NE(at, std::string::npos) << out;
+    long long frames = 0, steps = 0;
+    double span = 0, fps = 0, rate = 0, statusFps = 0, statusRate = 0;
+    ASSERT_EQ(std::sscanf(out.c_str() + at,
+                          "rates: %lld frames, %lld steps in %lf s: %lf fps, %lf steps/s "
+                          "(status line: %lf fps, %lf steps/s",
+                          &frames, &steps, &span, &fps, &rate, &statusFps, &statusRate),
+              7)
+        << out;
+    // Five frames of 20 steps after the preset, and the frame that opened it
+    // may have run some of the first preset's last frame.
+    EXPECT_GE(steps, 100) << out;
+    EXPECT_LE(steps, 140) << out;
+    EXPECT_GE(statusRate, 0.0) << out;
 }
 
 TEST(Designer, BadScriptIsRefusedBeforeAWindowOpens) {

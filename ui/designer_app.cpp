@@ -367,7 +367,7 @@ void Designer::restoreAutosave() {
 
 void Designer::stepOnce() {
     m_playing = false;
-    guarded("step", [&] { m_doc.advance(1); });
+    guarded("step", [&] { advance(1); });
 }
 
 void Designer::reset() {
@@ -488,8 +488,8 @@ void Designer::frame() {
     if (seconds(now - m_lastRate) >= 0.5) {
         const double span = seconds(now - m_lastRate);
         m_fps = m_framesSinceRate / span;
-        m_stepsPerSecond = double(m_doc.steps() - m_stepsAtLastRate) / span;
-        m_stepsAtLastRate = m_doc.steps();
+        m_stepsPerSecond = double(m_stepsRun - m_stepsAtLastRate) / span;
+        m_stepsAtLastRate = m_stepsRun;
         m_framesSinceRate = 0;
         m_lastRate = now;
     }
@@ -532,6 +532,12 @@ void Designer::frame() {
     autosave(false);
 }
 
+void Designer::advance(int steps) {
+    const long long before = m_doc.steps();
+    m_doc.advance(steps); // a throw loses this call's count: the rates are a display figure
+    m_stepsRun += std::max(0LL, m_doc.steps() - before);
+}
+
 void Designer::simulate() {
     if (!m_doc.isOpen() || m_doc.run().finished())
         return;
@@ -541,7 +547,7 @@ void Designer::simulate() {
         bool failed = true;
         guarded("replay", [&] {
             while (m_replayTo > m_doc.steps() && seconds(Clock::now() - start) < kFrameBudget)
-                m_doc.advance(int(std::min<long long>(m_replayTo - m_doc.steps(), 50)));
+                advance(int(std::min<long long>(m_replayTo - m_doc.steps(), 50)));
             failed = false;
         });
         if (m_replayTo <= m_doc.steps() || failed) {
@@ -555,7 +561,7 @@ void Designer::simulate() {
     int steps = m_stepsPerFrame > 0 ? m_stepsPerFrame : m_autoSteps;
     const Clock::time_point start = Clock::now();
     try {
-        m_doc.advance(steps);
+        advance(steps);
         // The run's own blow-up check is off (it reads the whole state back
         // every chunk); one check per second of frames is enough to stop.
         if (m_framesSinceRate == 0) {

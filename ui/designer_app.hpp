@@ -135,6 +135,10 @@ public:
     bool thumbnailsDone() const { return m_thumbnails.rendered() >= m_thumbnails.total(); }
     double fps() const { return m_fps; }
     double stepsPerSecond() const { return m_stepsPerSecond; }
+    // Steps the simulation has run in this process (replays included): the
+    // rates' count, which a preset, a reset or a history branch does not move
+    // the way it moves the run's step number.
+    long long stepsRun() const { return m_stepsRun; }
     // Seconds spent in each part of the frames since the last takeFrameTimes.
     struct FrameTimes {
         long long frames = 0;
@@ -153,6 +157,7 @@ private:
     static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
     void frame();
     void simulate();
+    void advance(int steps); // m_doc.advance, counted in m_stepsRun
     void refreshDisplay();
     void handleShortcuts();
     void drawMenuBar();
@@ -220,7 +225,7 @@ private:
     FrameTimes m_frameTimes;
     double m_fps = 0, m_stepsPerSecond = 0;
     std::chrono::steady_clock::time_point m_lastFrame, m_lastRate, m_lastAutosave;
-    long long m_stepsAtLastRate = 0;
+    long long m_stepsRun = 0, m_stepsAtLastRate = 0;
     int m_framesSinceRate = 0;
     long long m_snapshotEvery = 500;
     // An opened session file runs to its steps (its strokes replayed) before

@@ -380,7 +380,7 @@ void ScriptPlayer::printRates(Designer& d) {
     // Averages since the last `rates` (the first one only starts the clock):
     // the status line's figures are over half a second, too short to quote.
     const auto now = std::chrono::steady_clock::now();
-    const long long steps = d.document().isOpen() ? d.document().steps() : 0;
+    const long long steps = d.stepsRun();
     if (m_ratesFrames > 0 && m_ratesSince != std::chrono::steady_clock::time_point{}) {
         const double span = std::chrono::duration<double>(now - m_ratesSince).count();
         std::printf("rates: %lld frames, %lld steps in %.2f s: %.1f fps, %.0f steps/s "
