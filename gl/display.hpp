@@ -30,9 +30,14 @@ public:
     Display(int width, int height);
 
     // Front: a GpuSimulator takes the GPU pass, any other backend the CPU path.
-    void update(const Simulator& simulator, int chemical, const ColorMapSpec& spec);
-    void render(const GpuSimulator& simulator, int chemical, const ColorMapSpec& spec);
-    void upload(const State& state, int chemical, const ColorMapSpec& spec);
+    // `edges`: the session's, for the watercolour map's dark edges (read
+    // across the border as the simulation does; applyColormap).
+    void update(const Simulator& simulator, int chemical, const ColorMapSpec& spec,
+                EdgeMode edges = EdgeMode::Clamped);
+    void render(const GpuSimulator& simulator, int chemical, const ColorMapSpec& spec,
+                EdgeMode edges = EdgeMode::Clamped);
+    void upload(const State& state, int chemical, const ColorMapSpec& spec,
+                EdgeMode edges = EdgeMode::Clamped);
 
     const Texture2D& texture() const { return m_display; }
     // Reads the display texture back (tests, screenshots): RGBA, row 0 = cell row 0.
@@ -45,10 +50,17 @@ private:
     std::vector<std::uint8_t> m_uploadRgba; // upload's, kept: a new one a frame page-faults
     Framebuffer m_displayFramebuffer;
     // The "watercolour" map: the watercolour model's two state textures
-    // painted (glsl/watercolour_display.frag), no reduction.
-    void paint(const GpuSimulator& simulator);
+    // painted (glsl/watercolour_display.frag), no reduction; first the
+    // wet-area mask's blurs for its dark edges (glsl/wet_edge_blur.frag).
+    void paint(const GpuSimulator& simulator, const ColorMapSpec& spec, EdgeMode edges);
+    // One blur pass of `source` along x or y into m_edgeTextures[target].
+    void blurPass(const Texture2D& source, int target, bool alongX, int radius, bool wrap,
+                  bool mask);
 
-    Program m_reduceFirst, m_reduce, m_colour, m_watercolour;
+    Program m_reduceFirst, m_reduce, m_colour, m_watercolour, m_edgeBlur;
+    // The watercolour map's blurs (R32F): a scratch pass, near, wide; made on first use.
+    std::vector<Texture2D> m_edgeTextures;
+    std::vector<Framebuffer> m_edgeFramebuffers;
     std::vector<Texture2D> m_levels; // each a quarter of the one before per side, to 1 x 1
     std::vector<Framebuffer> m_levelFramebuffers;
 };

@@ -170,29 +170,43 @@ TEST(WatercolourGl, DropsRunDownAModelAsOnTheCpu) {
 
 // The designer's GPU display of the "watercolour" map against the CPU path
 // (what render writes): the same paint within the driver's float-to-unorm8
-// rounding (1 of 255 per channel).
+// rounding (1 of 255 per channel), dark edges included, read across the
+// border both ways (the session's edges).
 TEST(WatercolourGl, GpuDisplayPaintsAsTheImageWriter) {
     test::glContext();
-    Session s = sessionFromJson(nlohmann::json{{"model", "watercolour"}}, "display");
-    s.width = 40;
-    s.height = 32;
-    s.init.inside["p2"] = 0.4f;
-    s.colormap.name = "watercolour";
-    gl::GpuSimulator gpu(s);
-    gpu.setState(makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, s.seed));
-    gpu.run(150); // part dry, part wet: deposits and suspended pigment both show
-    gl::Display onGpu(s.width, s.height), onCpu(s.width, s.height);
-    onGpu.render(gpu, 0, s.colormap);
-    onCpu.upload(gpu.state(), 0, s.colormap);
-    const std::vector<std::uint8_t> a = onGpu.downloadRgba8(), b = onCpu.downloadRgba8();
-    ASSERT_EQ(a.size(), b.size());
-    int worst = 0, coloured = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        worst = std::max(worst, std::abs(int(a[i]) - int(b[i])));
-        coloured += i % 4 == 0 && b[i] < 200; // red absorbed: blue pigment shows
+    for (const EdgeMode edges : {EdgeMode::Clamped, EdgeMode::Periodic}) {
+        Session s = sessionFromJson(nlohmann::json{{"model", "watercolour"}}, "display");
+        s.width = 64;
+        s.height = 48;
+        s.edges = edges;
+        s.init.inside["p2"] = 0.4f;
+        s.colormap.name = "watercolour";
+        s.colormap.edgeWidth = 0.06f; // radii 1 and 4 cells at 64
+        gl::GpuSimulator gpu(s);
+        gpu.setState(
+            makeInitialState(s.init, s.reactionModel(), s.params, s.width, s.height, s.seed));
+        gpu.run(150); // part dry, part wet: deposits and suspended pigment both show
+        ColorMapSpec plain = s.colormap;
+        plain.edgeDarkening = 0.0f;
+        gl::Display onGpu(s.width, s.height), onCpu(s.width, s.height), flat(s.width, s.height);
+        onGpu.render(gpu, 0, s.colormap, edges);
+        onCpu.upload(gpu.state(), 0, s.colormap, edges);
+        flat.render(gpu, 0, plain, edges);
+        const std::vector<std::uint8_t> a = onGpu.downloadRgba8(), b = onCpu.downloadRgba8(),
+                                        c = flat.downloadRgba8();
+        ASSERT_EQ(a.size(), b.size());
+        int worst = 0, coloured = 0, darkened = 0;
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            worst = std::max(worst, std::abs(int(a[i]) - int(b[i])));
+            coloured += i % 4 == 0 && b[i] < 200; // red absorbed: blue pigment shows
+            darkened += i % 4 == 0 && int(a[i]) + 8 < int(c[i]);
+        }
+        std::printf("watercolour display (%s edges): gpu-cpu worst %d of 255, %d pigmented "
+                    "texels, %d darkened by more than 8 of 255 at the edges\n",
+                    edges == EdgeMode::Periodic ? "periodic" : "clamped", worst, coloured,
+                    darkened);
+        EXPECT_LE(worst, 1);
+        EXPECT_GT(coloured, 20);
+        EXPECT_GT(darkened, 20) << "the dark edges were not drawn";
     }
-    std::printf("watercolour display: gpu-cpu worst %d of 255, %d pigmented texels\n", worst,
-                coloured);
-    EXPECT_LE(worst, 1);
-    EXPECT_GT(coloured, 20);
 }

@@ -250,3 +250,90 @@ TEST(Watercolour, MapPaintsPigmentOnPaper) {
     const State grey(3, 1, 2);
     EXPECT_THROW(applyColormap(grey, 0, spec), InputError);
 }
+
+namespace {
+
+// Mean optical density (-log of the painted red, which pigment 1 absorbs)
+// by distance from the canvas' centre, in one-cell rings.
+std::vector<double> densityRings(const State& end, const ColorMapSpec& spec) {
+    const std::vector<float> rgb = applyColormap(end, M::D1, spec);
+    const int n = end.width();
+    std::vector<double> sum(std::size_t(n / 2 + 1), 0.0), count(sum.size(), 0.0);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const int r = int(std::hypot(x + 0.5 - n / 2.0, y + 0.5 - n / 2.0));
+            if (r <= n / 2) {
+                sum[std::size_t(r)] -= std::log(rgb[(std::size_t(y) * n + x) * 3]);
+                count[std::size_t(r)] += 1;
+            }
+        }
+    for (std::size_t r = 0; r < sum.size(); ++r)
+        sum[r] /= count[r];
+    return sum;
+}
+
+} // namespace
+
+// The map's dark edge where a wash dried (WatercolourEdges): a moist dab,
+// which this model alone dries darkest in its middle, is painted darker in
+// a band just inside the edge of where the paper was wet, darker there than
+// its middle; the middle hardly changes and the dry paper round it not at all.
+TEST(Watercolour, DriedWashIsPaintedDarkerAtItsEdge) {
+    const json strokes = json::array(
+        {{{"points", {{0.5, 0.5}}}, {"radius", 0.15}, {"water", 1.0}, {"amount", 0.5}}});
+    json j = paintingJson(80, 1500, strokes);
+    j["params"] = {{"paper_grain", 0}, {"paper_fibres", 0}}; // a plain paper: the profile alone
+    const State end = paint(sessionFromJson(j, "edge"));
+    ColorMapSpec plain, darkened;
+    plain.name = darkened.name = "watercolour";
+    plain.edgeDarkening = 0.0f;
+    darkened.edgeWidth = 0.05f; // 4 cells at 80, as the default is at 256
+    const std::vector<double> a = densityRings(end, plain), b = densityRings(end, darkened);
+    const auto peak = [](const std::vector<double>& v, int from) {
+        int at = from;
+        for (int r = from; r < int(v.size()); ++r)
+            at = v[std::size_t(r)] > v[std::size_t(at)] ? r : at;
+        return at;
+    };
+    const int rimAt = peak(b, 3);
+    std::printf(
+        "density: centre %.4f, without edges the densest ring %d (%.4f); with edges ring %d "
+        "%.4f (%.2fx the centre)\n",
+        b[0], peak(a, 0), a[std::size_t(peak(a, 0))], rimAt, b[std::size_t(rimAt)],
+        b[std::size_t(rimAt)] / b[0]);
+    EXPECT_LT(peak(a, 0), 3) << "without the effect this dab is darkest in its middle";
+    EXPECT_GT(rimAt, 6);
+    // Measured 1.28x: half the margin.
+    EXPECT_GT(b[std::size_t(rimAt)], 1.14 * b[0]);
+    // The band fades inwards over about twice the width (8 of this dab's 12
+    // cells): measured 0.4% in its middle.
+    EXPECT_NEAR(b[0], a[0], 0.01 * a[0]) << "the middle of the wash is hardly darkened";
+    EXPECT_EQ(b.back(), a.back()) << "nor the dry paper round it";
+}
+
+// edge_darkening and edge_width belong to the watercolour map, are read
+// back as written, and are refused with the field named elsewhere or out of range.
+TEST(Watercolour, EdgeFieldsAreTheWatercolourMapsOwn) {
+    json j = paintingJson(32, 10, json::array());
+    j["colormap"] = {{"name", "watercolour"}, {"edge_darkening", 0.5}, {"edge_width", 0.02}};
+    const Session s = sessionFromJson(j, "edges");
+    EXPECT_FLOAT_EQ(s.colormap.edgeDarkening, 0.5f);
+    EXPECT_FLOAT_EQ(s.colormap.edgeWidth, 0.02f);
+    const Session back = sessionFromJson(sessionToJson(s), "back");
+    EXPECT_EQ(back.colormap.edgeDarkening, s.colormap.edgeDarkening);
+    EXPECT_EQ(back.colormap.edgeWidth, s.colormap.edgeWidth);
+    const auto refused = [&](json colormap, const std::string& expected) {
+        json k = j;
+        k["colormap"] = colormap;
+        try {
+            sessionFromJson(k, "bad");
+            ADD_FAILURE() << "accepted " << colormap.dump();
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+        }
+    };
+    refused({{"name", "grey"}, {"edge_darkening", 1}}, "edge_darkening");
+    refused({{"name", "watercolour"}, {"edge_darkening", -1}}, "edge_darkening");
+    refused({{"name", "watercolour"}, {"edge_width", 0}}, "edge_width");
+    refused({{"name", "watercolour"}, {"edge_width", "wide"}}, "edge_width");
+}

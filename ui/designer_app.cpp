@@ -247,7 +247,7 @@ void Designer::writeRecordedFrame() {
     guarded("record", [&] {
         const State state = m_doc.run().state();
         const std::vector<float> rgb =
-            applyColormap(state, m_doc.liveChemical(), m_doc.liveColormap());
+            applyColormap(state, m_doc.liveChemical(), m_doc.liveColormap(), m_doc.live().edges);
         writeRgbImage(framePath(m_recordDir, m_recordIndex++), rgb, state.width(), state.height(),
                       8);
         written = true;
@@ -606,11 +606,16 @@ void Designer::refreshDisplay() {
     const int chemical = m_displayChemical >= 0 && m_displayChemical < int(model.chemicals().size())
                              ? m_displayChemical
                              : m_doc.liveChemical();
+    ColorMapSpec spec = m_doc.liveColormap();
+    // An atlas's tiles are not neighbours in the texture: no watercolour
+    // edges across them (as on the model, surface_colours.cpp).
+    if (live.surface.active())
+        spec.edgeDarkening = 0.0f;
     guarded("display", [&] {
         if (m_scrub && *m_scrub < m_doc.history().size())
-            m_display->upload(m_doc.history().state(*m_scrub), chemical, m_doc.liveColormap());
+            m_display->upload(m_doc.history().state(*m_scrub), chemical, spec, live.edges);
         else
-            m_display->update(m_doc.run().simulator(), chemical, m_doc.liveColormap());
+            m_display->update(m_doc.run().simulator(), chemical, spec, live.edges);
     });
 }
 

@@ -106,7 +106,7 @@ void colour(const ColourFlags& f) {
     if (const auto flat = describeFlatChannel(state, chemical, names[std::size_t(chemical)]))
         std::fprintf(stderr, "morphogen: warning: %s: %s, so the image is one colour\n",
                      f.raw.c_str(), flat->c_str());
-    writeColourMapped(f.out, ColourMapRows(state, chemical, spec), f.bitDepth);
+    writeColourMapped(f.out, ColourMapRows(state, chemical, spec, session.edges), f.bitDepth);
     std::printf("%s\n", f.out.c_str());
 }
 

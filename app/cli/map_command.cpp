@@ -143,8 +143,9 @@ void writeMapPlot(const std::string& path, const MapPlan& plan, const RunResult&
                               " (y), " + std::to_string(result.stepsDone) + " steps";
     PlotFrame plot =
         drawPlotFrame(s.width, s.height, xAxis, linearAxis(plan.y, s.height, 6, true), title);
-    plot.canvas.paste(applyColormap(result.state, colormapChemical(s.colormap, model), s.colormap),
-                      s.width, s.height, plot.left, plot.top);
+    plot.canvas.paste(
+        applyColormap(result.state, colormapChemical(s.colormap, model), s.colormap, s.edges),
+        s.width, s.height, plot.left, plot.top);
     writeRgbImage(path, plot.canvas.rgb, plot.canvas.width, plot.canvas.height, 8);
 }
 

@@ -89,7 +89,7 @@ RunResult renderFrames(const Session& session, const SimulatorFactory& makeSimul
         }
         writeColourMapped(frames.path(index),
                           ColourMapRows(sofar.state, colormapChemical(session.colormap, m),
-                                        session.colormap, levels.low, levels.high),
+                                        session.colormap, levels.low, levels.high, session.edges),
                           8);
         frames.written(index);
     };

@@ -131,7 +131,8 @@ void writeSheet(const std::string& path, const SweepSpec& spec, const std::vecto
             if (!finiteState(tile)) {
                 hatch(big, side);
             } else {
-                const std::vector<float> rgb = applyColormap(tile, chemical, spec.base.colormap);
+                const std::vector<float> rgb =
+                    applyColormap(tile, chemical, spec.base.colormap, spec.base.edges);
                 for (int y = 0; y < side; ++y)
                     for (int x = 0; x < side; ++x)
                         for (int c = 0; c < 3; ++c)

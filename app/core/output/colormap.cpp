@@ -163,10 +163,12 @@ bool paintsState(const ColorMapSpec& spec, const State& state) {
 
 } // namespace
 
-ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec)
+ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec,
+                             EdgeMode edges)
     : m_state(state), m_chemical(chemical), m_palette(colormapAnchors(spec)),
       m_levelLow(spec.levels[0]), m_levelScale(1.0f / (spec.levels[1] - spec.levels[0])),
       m_paint(paintsState(spec, state)) {
+    findEdges(spec, edges);
     const float* p = state.plane(chemical);
     const std::ptrdiff_t n = std::ptrdiff_t(state.cellCount());
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
@@ -185,16 +187,26 @@ ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpe
 }
 
 ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec, float low,
-                             float high)
+                             float high, EdgeMode edges)
     : m_state(state), m_chemical(chemical), m_palette(colormapAnchors(spec)), m_low(low),
       m_scale(1.0f / (high - low)), m_levelLow(spec.levels[0]),
       m_levelScale(1.0f / (spec.levels[1] - spec.levels[0])), m_paint(paintsState(spec, state)) {
     assert(low < high);
+    findEdges(spec, edges);
+}
+
+ColourMapRows::~ColourMapRows() = default;
+
+void ColourMapRows::findEdges(const ColorMapSpec& spec, EdgeMode edges) {
+    if (!m_paint || !(spec.edgeDarkening > 0.0f))
+        return;
+    m_edgeDarkening = spec.edgeDarkening;
+    m_edges = std::make_unique<WatercolourEdges>(m_state, spec.edgeWidth, edges);
 }
 
 void ColourMapRows::row(int y, float* rgb) const {
     if (m_paint) {
-        paintWatercolourRow(m_state, y, WatercolourLook(), rgb);
+        paintWatercolourRow(m_state, y, WatercolourLook(), rgb, m_edges.get(), m_edgeDarkening);
         return;
     }
     const std::size_t w = std::size_t(m_state.width());
@@ -211,8 +223,9 @@ void ColourMapRows::row(int y, float* rgb) const {
     }
 }
 
-std::vector<float> applyColormap(const State& state, int chemical, const ColorMapSpec& spec) {
-    const ColourMapRows rows(state, chemical, spec);
+std::vector<float> applyColormap(const State& state, int chemical, const ColorMapSpec& spec,
+                                 EdgeMode edges) {
+    const ColourMapRows rows(state, chemical, spec, edges);
     const std::size_t rowLength = std::size_t(state.width()) * 3;
     std::vector<float> rgb(state.cellCount() * 3);
     for (int y = 0; y < state.height(); ++y)

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,8 @@
 #include "core/session/session.hpp"
 
 namespace morphogen {
+
+class WatercolourEdges;
 
 // Colour map names accepted by --colormap and "colormap.name".
 const std::vector<std::string>& colormapNames();
@@ -36,25 +39,35 @@ constexpr int kMaxColormapAnchors = 16;
 // One chemical, normalised by its own min and max over the grid (de Kleine's
 // min-max mapping), windowed by spec.levels, through the named map:
 // interleaved RGB in [0, 1].
-std::vector<float> applyColormap(const State& state, int chemical, const ColorMapSpec& spec);
+// `edges`: how the watercolour map's edge darkening reads across the image's
+// border (the session's edges; other maps read no neighbours).
+std::vector<float> applyColormap(const State& state, int chemical, const ColorMapSpec& spec,
+                                 EdgeMode edges = EdgeMode::Clamped);
 
 // A colour map applied a row at a time: the levels are found once, then rows
 // are mapped on demand, so a big image is written without a whole-image RGB
 // buffer. Holds a reference to the state.
 class ColourMapRows {
 public:
-    // applyColormap's min-max levels over the chemical's plane.
-    ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec);
+    // applyColormap's min-max levels over the chemical's plane. `edges` as
+    // applyColormap's.
+    ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec,
+                  EdgeMode edges = EdgeMode::Clamped);
     // Fixed levels: chemical values low..high (low < high) map to 0..1 before
     // spec.levels' window (applyLockedColormap, frames.hpp).
-    ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec, float low,
-                  float high);
+    ColourMapRows(const State& state, int chemical, const ColorMapSpec& spec, float low, float high,
+                  EdgeMode edges = EdgeMode::Clamped);
+    ~ColourMapRows();
+    ColourMapRows(const ColourMapRows&) = delete;
+    ColourMapRows& operator=(const ColourMapRows&) = delete;
     int width() const { return m_state.width(); }
     int height() const { return m_state.height(); }
     // Row y's interleaved RGB in [0, 1] (width * 3 values).
     void row(int y, float* rgb) const;
 
 private:
+    void findEdges(const ColorMapSpec& spec, EdgeMode edges);
+
     const State& m_state;
     int m_chemical;
     std::vector<std::array<float, 3>> m_palette;
@@ -63,6 +76,8 @@ private:
     float m_levelLow;
     float m_levelScale;
     bool m_paint = false; // the watercolour map: paintWatercolourRow, not the palette
+    float m_edgeDarkening = 0.0f;
+    std::unique_ptr<WatercolourEdges> m_edges; // the watercolour map's, when it darkens
 };
 
 // Writes the rows as an 8- or 16-bit RGB PNG/TIFF (image_io's writeImageRows).

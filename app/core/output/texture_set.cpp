@@ -178,7 +178,8 @@ void writeTextureSet(const std::string& dir, const State& state, const Session& 
     const HeightLevels levels = heightLevels(session, chemical);
 
     // Every map a row at a time from the state: no whole-image buffers.
-    writeColourMapped(staged("albedo.png"), ColourMapRows(state, chemical, session.colormap), 8);
+    writeColourMapped(staged("albedo.png"),
+                      ColourMapRows(state, chemical, session.colormap, session.edges), 8);
     const HeightOf h(state, chemical, levels);
     const auto heightRow = [&](int y, float* row) {
         const std::size_t first = std::size_t(y) * std::size_t(w);

@@ -8,7 +8,104 @@
 
 namespace morphogen {
 
-void paintWatercolourRow(const State& state, int y, const WatercolourLook& look, float* rgb) {
+namespace {
+
+// Index i of a line of n samples, read across its ends as the edges say.
+int across(int i, int n, EdgeMode edges) {
+    if (edges == EdgeMode::Periodic)
+        return ((i % n) + n) % n;
+    return std::clamp(i, 0, n - 1);
+}
+
+// Box blur of radius r along x of every row: running sums in double, so a
+// wide box costs what a narrow one does.
+void blurRows(const std::vector<float>& in, std::vector<float>& out, int w, int h, int r,
+              EdgeMode edges) {
+    const double scale = 1.0 / double(2 * r + 1);
+#pragma omp parallel for schedule(static) if (std::size_t(w) * std::size_t(h) >= 65536)
+    for (int y = 0; y < h; ++y) {
+        const float* src = in.data() + std::size_t(y) * std::size_t(w);
+        float* dst = out.data() + std::size_t(y) * std::size_t(w);
+        double sum = 0.0;
+        for (int j = -r; j <= r; ++j)
+            sum += src[across(j, w, edges)];
+        for (int x = 0; x < w; ++x) {
+            dst[x] = float(sum * scale);
+            sum += double(src[across(x + r + 1, w, edges)]) - double(src[across(x - r, w, edges)]);
+        }
+    }
+}
+
+// The same along y, a row of running sums at a time (rows stay contiguous).
+void blurColumns(const std::vector<float>& in, std::vector<float>& out, int w, int h, int r,
+                 EdgeMode edges) {
+    const double scale = 1.0 / double(2 * r + 1);
+    const auto row = [&](int y) { return in.data() + std::size_t(y) * std::size_t(w); };
+    constexpr int kBand = 256; // columns a thread sums at once
+    const int bands = (w + kBand - 1) / kBand;
+#pragma omp parallel for schedule(static) if (std::size_t(w) * std::size_t(h) >= 65536)
+    for (int b = 0; b < bands; ++b) {
+        const int x0 = b * kBand, x1 = std::min(w, x0 + kBand);
+        std::vector<double> sum(std::size_t(x1 - x0), 0.0);
+        for (int j = -r; j <= r; ++j) {
+            const float* src = row(across(j, h, edges));
+            for (int x = x0; x < x1; ++x)
+                sum[std::size_t(x - x0)] += src[x];
+        }
+        for (int y = 0; y < h; ++y) {
+            float* dst = out.data() + std::size_t(y) * std::size_t(w);
+            const float* enter = row(across(y + r + 1, h, edges));
+            const float* leave = row(across(y - r, h, edges));
+            for (int x = x0; x < x1; ++x) {
+                double& s = sum[std::size_t(x - x0)];
+                dst[x] = float(s * scale);
+                s += double(enter[x]) - double(leave[x]);
+            }
+        }
+    }
+}
+
+// A box blur of radius r on both axes (r = 0: the plane itself).
+std::vector<float> boxBlur(std::vector<float> plane, int w, int h, int r, EdgeMode edges) {
+    if (r <= 0)
+        return plane;
+    std::vector<float> tmp(plane.size());
+    blurRows(plane, tmp, w, h, r, edges);
+    blurColumns(tmp, plane, w, h, r, edges);
+    return plane;
+}
+
+} // namespace
+
+std::array<int, 2> WatercolourEdges::radii(int width, float edgeWidth) {
+    const float wide = edgeWidth * float(width);
+    return {int(std::lround(wide / 3.0f)), std::max(1, int(std::lround(wide)))};
+}
+
+WatercolourEdges::WatercolourEdges(const State& state, float edgeWidth, EdgeMode edges) {
+    using M = WatercolourModel;
+    const int w = state.width(), h = state.height();
+    const std::array<int, 2> r = radii(w, edgeWidth);
+    // Where the paper was wet: the water gone (absorbed and evaporated),
+    // saturated, so the wash's inside is 1 whatever its depth and the paper's
+    // grain does not show in it.
+    const float* gone = state.plane(M::G);
+    std::vector<float> wet(state.cellCount());
+    for (std::size_t i = 0; i < wet.size(); ++i) {
+        const float g = std::isfinite(gone[i]) ? std::max(0.0f, gone[i]) : 0.0f;
+        const float t = std::clamp((g - kWetEdge[0]) / (kWetEdge[1] - kWetEdge[0]), 0.0f, 1.0f);
+        wet[i] = t * t * (3.0f - 2.0f * t);
+    }
+    const std::vector<float> near = boxBlur(wet, w, h, r[0], edges);
+    std::vector<float> wide =
+        boxBlur(boxBlur(std::move(wet), w, h, r[1], edges), w, h, r[1], edges);
+    for (std::size_t i = 0; i < wide.size(); ++i)
+        wide[i] = std::max(0.0f, near[i] - wide[i]);
+    m_band = std::move(wide);
+}
+
+void paintWatercolourRow(const State& state, int y, const WatercolourLook& look, float* rgb,
+                         const WatercolourEdges* edges, float edgeDarkening) {
     using M = WatercolourModel;
     const std::size_t w = std::size_t(state.width());
     const std::size_t row = std::size_t(y) * w;
@@ -16,14 +113,19 @@ void paintWatercolourRow(const State& state, int y, const WatercolourLook& look,
     const float* stick = state.plane(M::S) + row;
     const float* wet[2] = {state.plane(M::P1) + row, state.plane(M::P2) + row};
     const float* dry[2] = {state.plane(M::D1) + row, state.plane(M::D2) + row};
+    const float* band = edges ? edges->band() + row : nullptr;
     for (std::size_t x = 0; x < w; ++x) {
+        // Half a straight edge's band is 0.5: the rim is 1 + edgeDarkening times the deposit.
+        const float rim = band ? 1.0f + 2.0f * edgeDarkening * band[x] : 1.0f;
         const float tint =
             1.0f - look.grain * (stick[x] - 0.5f) - look.sheen * std::clamp(water[x], 0.0f, 1.0f);
         for (int c = 0; c < 3; ++c) {
             float optical = 0.0f;
-            for (int k = 0; k < 2; ++k)
+            for (int k = 0; k < 2; ++k) {
+                const float settled = dry[k][x] * rim;
                 optical +=
-                    look.absorbance[k][c] * std::max(0.0f, dry[k][x] + look.wetShare * wet[k][x]);
+                    look.absorbance[k][c] * std::max(0.0f, settled + look.wetShare * wet[k][x]);
+            }
             const float v = look.paper[c] * tint * std::exp(-optical);
             rgb[x * 3 + c] = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
         }

@@ -1,8 +1,10 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "core/base/state.hpp"
+#include "core/domain/grid_domain.hpp"
 
 namespace morphogen {
 
@@ -28,9 +30,46 @@ struct WatercolourLook {
     float grain = 0.06f; // tint change of the paper per unit of stickiness
 };
 
+// The dark edge a wash leaves where it dries, as a render effect (the
+// image-space edge darkening of Bousseau et al. 2006, and Curtis et al.
+// 1997's darkening at the edge of the wet-area mask), not a flow in the
+// simulation: this model's linear diffusion cannot carry pigment to a pinned
+// edge (watercolour.hpp), so its own rim is only ~1.08x its middle.
+// The wet-area mask is where the paper was wet, m = g / (g + kWetHalf) from
+// the water gone g (smooth: water moves fast; saturated: a wash's inside is
+// 1 however deep it was). Its band
+//   band = max(0, near(m) - wide(m))
+// is 0 inside a wash and on dry paper and about 0.5 just inside the wash's
+// edge, fading inwards over the width; near is a box blur of radius
+// round(width / 3) cells, wide two box blurs of radius round(width) cells,
+// width = edgeWidth x the image's width in cells (the same look at any size,
+// as strokes are sized). The painter multiplies a texel's deposits by
+// 1 + 2 edgeDarkening band: a dried wash is 1 + edgeDarkening times darker at
+// its edge. Suspended (wet) pigment is not darkened. Two washes painted into
+// each other wet share one wet area (no edge between them, as wet-in-wet
+// has none). Blurs read across the image's border as the session's edges do
+// (periodic wraps, clamped repeats the border texel); the row passes use
+// running sums (O(1) a texel whatever the width).
+class WatercolourEdges {
+public:
+    // Water gone over which the mask rises from 0 to 1 (a smoothstep).
+    static constexpr float kWetEdge[2] = {0.15f, 0.45f};
+
+    WatercolourEdges(const State& state, float edgeWidth, EdgeMode edges);
+    // The band at cell (x, y), row-major, width x height.
+    const float* band() const { return m_band.data(); }
+    // The radii in cells (near, wide) for a state `width` cells wide.
+    static std::array<int, 2> radii(int width, float edgeWidth);
+
+private:
+    std::vector<float> m_band;
+};
+
 // Paints row y of a watercolour-model state (WatercolourModel's chemical
-// layout) as interleaved RGB in [0, 1], width * 3 values.
-void paintWatercolourRow(const State& state, int y, const WatercolourLook& look, float* rgb);
+// layout) as interleaved RGB in [0, 1], width * 3 values. With `edges`, the
+// deposits are darkened at the edges of the wet area (WatercolourEdges).
+void paintWatercolourRow(const State& state, int y, const WatercolourLook& look, float* rgb,
+                         const WatercolourEdges* edges = nullptr, float edgeDarkening = 0.0f);
 
 // True when the model's chemicals are the watercolour model's (what the map paints).
 bool paintsAsWatercolour(const ReactionModel& model);

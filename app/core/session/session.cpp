@@ -276,7 +276,8 @@ void readParamMaps(const FieldReader& top, const json& maps, const ReactionModel
 ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const ReactionModel& shown,
                               bool lastStageModel) {
     FieldReader reader(cm, top.source(), "colormap");
-    reader.rejectUnknown({"name", "chemical", "low", "high", "levels", "colours", "colors"});
+    reader.rejectUnknown({"name", "chemical", "low", "high", "levels", "colours", "colors",
+                          "edge_darkening", "edge_width"});
     ColorMapSpec spec;
     const json* colours = reader.find("colours");
     if (!colours)
@@ -326,6 +327,13 @@ ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const Reac
         if (!(spec.levels[0] < spec.levels[1]))
             reader.failField("levels", "must be an array [low, high] with 0 <= low < high <= 1");
     }
+    const bool watercolour = spec.name == "watercolour" || spec.name == "watercolor";
+    for (const char* key : {"edge_darkening", "edge_width"})
+        if (!watercolour && reader.find(key))
+            reader.failField(key, "applies only to the map named \"watercolour\", not '" +
+                                      spec.name + "'");
+    spec.edgeDarkening = float(reader.number("edge_darkening", spec.edgeDarkening, 0, 4));
+    spec.edgeWidth = float(reader.number("edge_width", spec.edgeWidth, 0.001, 0.25));
     return spec;
 }
 
@@ -453,6 +461,10 @@ json sessionToJson(const Session& s) {
     }
     if (s.colormap.levels != ColorMapSpec{}.levels)
         cm["levels"] = s.colormap.levels;
+    if (s.colormap.name == "watercolour" || s.colormap.name == "watercolor") {
+        cm["edge_darkening"] = s.colormap.edgeDarkening;
+        cm["edge_width"] = s.colormap.edgeWidth;
+    }
     j["colormap"] = cm;
     if (s.heightMaps != HeightSpec{})
         j["height"] = heightSpecToJson(s.heightMaps);

@@ -56,6 +56,12 @@ struct ColorMapSpec {
     // window makes a soft field a sharp-edged pattern (Witkin-Kass's cellular
     // textures are level sets of a smooth concentration).
     std::array<float, 2> levels = {0.0f, 1.0f};
+    // The "watercolour" map only: the dark edge where a wash dried
+    // (WatercolourEdges, core/output/watercolour_paint.hpp): its strength
+    // (0: none) and the band's width as a fraction of the image's width, as
+    // the strokes' radii are given.
+    float edgeDarkening = 1.0f;
+    float edgeWidth = 0.015f;
 };
 
 // Everything that determines a result: same session, same backend, same seed,
