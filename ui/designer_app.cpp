@@ -607,6 +607,10 @@ void Designer::refreshDisplay() {
                              ? m_displayChemical
                              : m_doc.liveChemical();
     ColorMapSpec spec = m_doc.liveColormap();
+    if (m_colormapDraft) {
+        spec.edgeDarkening = m_colormapDraft->edgeDarkening;
+        spec.edgeWidth = m_colormapDraft->edgeWidth;
+    }
     // An atlas's tiles are not neighbours in the texture: no watercolour
     // edges across them (as on the model, surface_colours.cpp).
     if (live.surface.active())

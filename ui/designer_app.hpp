@@ -169,6 +169,7 @@ private:
     void drawBrushSection();
     void drawCascadeSection();
     void drawDisplaySection();
+    void drawWatercolourEdges();
     void drawCanvas(float x, float y, float w, float h);
     void drawModelView(float x, float y, float w, float h);
     void renderModelView(int width, int height);
@@ -215,6 +216,9 @@ private:
     CanvasView m_view;
     bool m_viewFramed = false;
     bool m_nearest = true, m_tiled = false;
+    // The colour map while a slider of it is dragged: shown, and committed to
+    // the document (one undo step) when the drag ends.
+    std::optional<ColorMapSpec> m_colormapDraft;
     bool m_showActiveTiles = true; // the localized re-growth's tiles, on the canvas and the model
     std::array<float, 4> m_canvasRect{}, m_modelRect{};
     BrushSettings m_brush;

@@ -200,7 +200,7 @@ void Designer::renderMap() {
                     if (!r.cancelled) {
                         *pixels =
                             colouredRgba(r.state, colormapChemical(run.colormap, run.outputModel()),
-                                         run.colormap);
+                                         run.colormap, run.edges);
                         job->message = "rendered the map";
                         if (run.dt != s.dt)
                             job->message += " (at dt " + std::to_string(run.dt).substr(0, 6) +

@@ -649,9 +649,39 @@ void Designer::drawDisplaySection() {
                 });
         ImGui::EndCombo();
     }
+    if (isWatercolourMap(base.colormap))
+        drawWatercolourEdges();
     ImGui::Checkbox("tiled 3x3", &m_tiled);
     ImGui::SameLine();
     ImGui::Checkbox("nearest texels", &m_nearest);
+}
+
+void Designer::drawWatercolourEdges() {
+    ColorMapSpec spec = m_colormapDraft ? *m_colormapDraft : m_doc.live().colormap;
+    bool changed = false, done = false;
+    const auto slider = [&](const char* label, float* value, float low, float high,
+                            const char* format, ImGuiSliderFlags flags, const char* tip) {
+        ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.55f);
+        changed |= ImGui::SliderFloat(label, value, low, high, format, flags);
+        done |= ImGui::IsItemDeactivatedAfterEdit();
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s", tip);
+    };
+    slider("dark edges", &spec.edgeDarkening, 0.0f, 4.0f, "%.2f", ImGuiSliderFlags_None,
+           "How much darker a dried wash is at its edge (1: twice as dense). A render effect "
+           "on where the paper was wet; the simulation is unchanged. Not on a model.");
+    slider("edge width", &spec.edgeWidth, 0.001f, 0.25f, "%.3f", ImGuiSliderFlags_Logarithmic,
+           "The dark band's width, a fraction of the canvas width (as brush radii are).");
+    if (changed) {
+        spec.edgeDarkening = std::clamp(spec.edgeDarkening, 0.0f, 4.0f);
+        spec.edgeWidth = std::clamp(spec.edgeWidth, 0.001f, 0.25f);
+        m_colormapDraft = spec;
+    }
+    if (done && m_colormapDraft) {
+        const ColorMapSpec draft = *m_colormapDraft;
+        m_colormapDraft.reset();
+        guarded("colour map", [&] { m_doc.setColormap(draft); });
+    }
 }
 
 } // namespace morphogen::ui

@@ -154,7 +154,7 @@ void Thumbnails::work(std::vector<Session> presets) {
             }
             std::vector<float> rgba =
                 shrunk(colouredRgba(result.state, colormapChemical(s.colormap, s.outputModel()),
-                                    s.colormap),
+                                    s.colormap, s.edges),
                        s.width / kSize);
             keep(s.name, rgba);
             std::lock_guard<std::mutex> lock(m_mutex);
