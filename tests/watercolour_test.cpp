@@ -303,10 +303,10 @@ TEST(Watercolour, DriedWashIsPaintedDarkerAtItsEdge) {
         b[std::size_t(rimAt)] / b[0]);
     EXPECT_LT(peak(a, 0), 3) << "without the effect this dab is darkest in its middle";
     EXPECT_GT(rimAt, 6);
-    // Measured 1.28x: half the margin.
-    EXPECT_GT(b[std::size_t(rimAt)], 1.14 * b[0]);
+    // Measured 1.49x (at the default strength, 1.5): half the margin.
+    EXPECT_GT(b[std::size_t(rimAt)], 1.25 * b[0]);
     // The band fades inwards over about twice the width (8 of this dab's 12
-    // cells): measured 0.4% in its middle.
+    // cells): measured 0.6% in its middle.
     EXPECT_NEAR(b[0], a[0], 0.01 * a[0]) << "the middle of the wash is hardly darkened";
     EXPECT_EQ(b.back(), a.back()) << "nor the dry paper round it";
 }
