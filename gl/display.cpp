@@ -142,9 +142,9 @@ void Display::paint(const GpuSimulator& simulator, const ColorMapSpec& spec, Edg
             m_edgeFramebuffers.emplace_back(t);
     }
     const bool darken = spec.edgeDarkening > 0.0f;
+    const std::array<int, 2> r = WatercolourEdges::radii(m_width, spec.edgeWidth);
     if (darken) {
         // As WatercolourEdges: near = one box of the mask, wide = two wider ones.
-        const std::array<int, 2> r = WatercolourEdges::radii(m_width, spec.edgeWidth);
         const bool wrap = edges == EdgeMode::Periodic;
         const Texture2D& state = simulator.stateTexture(1);
         m_edgeBlur.use();
@@ -156,7 +156,8 @@ void Display::paint(const GpuSimulator& simulator, const ColorMapSpec& spec, Edg
         blurPass(m_edgeTextures[kScratch], kWide, false, r[1], wrap, false);
     }
     m_watercolour.use();
-    glUniform1f(m_watercolour.uniform("uEdgeDarkening"), darken ? spec.edgeDarkening : 0.0f);
+    glUniform1f(m_watercolour.uniform("uEdgeDarkening"),
+                darken ? spec.edgeDarkening / WatercolourEdges::crispPeak(r) : 0.0f);
     simulator.stateTexture(0).bind(kSourceUnit);
     simulator.stateTexture(1).bind(kSecondStateUnit);
     m_edgeTextures[kNear].bind(kNearUnit);

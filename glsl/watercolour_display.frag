@@ -3,7 +3,8 @@
 // (app/core/output/watercolour_paint.cpp) line for line.
 // uState0 = (w, p1, p2, s), uState1 = (d1, d2, g); uNear and uWide the
 // wet-area mask's two blurs (glsl/wet_edge_blur.frag): deposits are darkened
-// by 1 + 2 uEdgeDarkening max(0, near - wide) (WatercolourEdges).
+// by 1 + uEdgeDarkening max(0, near - wide), uEdgeDarkening the map's
+// edge_darkening over WatercolourEdges::crispPeak.
 
 uniform sampler2D uState0;
 uniform sampler2D uState1;
@@ -23,7 +24,7 @@ void main() {
     vec4 b = texelFetch(uState1, ivec2(gl_FragCoord.xy), 0);
     float band = max(0.0, texelFetch(uNear, ivec2(gl_FragCoord.xy), 0).x -
                           texelFetch(uWide, ivec2(gl_FragCoord.xy), 0).x);
-    float rim = 1.0 + 2.0 * uEdgeDarkening * band;
+    float rim = 1.0 + uEdgeDarkening * band;
     float tint = 1.0 - uGrain * (a.w - 0.5) - uSheen * clamp(a.x, 0.0, 1.0);
     vec3 optical = uAbsorbance[0] * max(0.0, b.x * rim + uWetShare * a.y) +
                    uAbsorbance[1] * max(0.0, b.y * rim + uWetShare * a.z);

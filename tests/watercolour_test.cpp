@@ -17,6 +17,7 @@
 #include "core/models/paper_texture.hpp"
 #include "core/models/watercolour.hpp"
 #include "core/output/colormap.hpp"
+#include "core/output/watercolour_paint.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/session_run.hpp"
 #include "test_support.hpp"
@@ -303,10 +304,10 @@ TEST(Watercolour, DriedWashIsPaintedDarkerAtItsEdge) {
         b[std::size_t(rimAt)] / b[0]);
     EXPECT_LT(peak(a, 0), 3) << "without the effect this dab is darkest in its middle";
     EXPECT_GT(rimAt, 6);
-    // Measured 1.49x (at the default strength, 1.5): half the margin.
+    // Measured 1.47x (at the default strength, 1): half the margin.
     EXPECT_GT(b[std::size_t(rimAt)], 1.25 * b[0]);
     // The band fades inwards over about twice the width (8 of this dab's 12
-    // cells): measured 0.6% in its middle.
+    // cells): measured 0.5% in its middle.
     EXPECT_NEAR(b[0], a[0], 0.01 * a[0]) << "the middle of the wash is hardly darkened";
     EXPECT_EQ(b.back(), a.back()) << "nor the dry paper round it";
 }
@@ -336,4 +337,41 @@ TEST(Watercolour, EdgeFieldsAreTheWatercolourMapsOwn) {
     refused({{"name", "watercolour"}, {"edge_darkening", -1}}, "edge_darkening");
     refused({{"name", "watercolour"}, {"edge_width", 0}}, "edge_width");
     refused({{"name", "watercolour"}, {"edge_width", "wide"}}, "edge_width");
+}
+
+// The band on a made-up state: a wash with sharp edges over the left half of
+// the canvas. It peaks just inside the wash's edge at crispPeak (what the
+// painter scales by) and is 0 deep inside and on dry paper; at the image's
+// border the clamped edges see no edge (the wash goes on past it), the
+// periodic ones see the wash end there (the right half is dry).
+TEST(Watercolour, EdgeBandFollowsTheSessionsEdges) {
+    const int w = 64, h = 8;
+    State st(w, h, M::Cell::kChemicals);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w / 2; ++x)
+            st.at(M::G, x, y) = 1.0f; // water went here: the paper was wet
+    const float width = 4.0f / float(w);
+    const std::array<int, 2> radii = WatercolourEdges::radii(w, width);
+    ASSERT_EQ(radii, (std::array<int, 2>{1, 4}));
+    const float crisp = WatercolourEdges::crispPeak(radii);
+    for (const EdgeMode edges : {EdgeMode::Clamped, EdgeMode::Periodic}) {
+        const WatercolourEdges e(st, width, edges);
+        const auto band = [&](int x) { return e.band()[std::size_t(3 * w + x)]; };
+        const auto peak = [&](int from, int to) {
+            float p = 0.0f;
+            for (int x = from; x < to; ++x)
+                p = std::max(p, band(x));
+            return p;
+        };
+        const bool wraps = edges == EdgeMode::Periodic;
+        SCOPED_TRACE(wraps ? "periodic" : "clamped");
+        EXPECT_NEAR(peak(w / 2 - 9, w / 2), crisp, 1e-5f); // just inside the edge
+        EXPECT_FLOAT_EQ(e.scale(), 1.0f / crisp);
+        EXPECT_EQ(band(w / 2 - 12), 0.0f); // deep inside: further than two wide radii
+        EXPECT_EQ(peak(w / 2, w), 0.0f);   // dry paper
+        if (wraps)
+            EXPECT_NEAR(peak(0, 9), crisp, 1e-5f); // the wash's other edge, across the border
+        else
+            EXPECT_EQ(peak(0, 9), 0.0f);
+    }
 }

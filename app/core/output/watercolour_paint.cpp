@@ -77,6 +77,21 @@ std::vector<float> boxBlur(std::vector<float> plane, int w, int h, int r, EdgeMo
 
 } // namespace
 
+float WatercolourEdges::crispPeak(const std::array<int, 2>& radii) {
+    // The band across a straight, sharp edge of a wash: a line of 1s then 0s,
+    // long enough that neither blur reaches its ends.
+    const int half = 4 * (radii[0] + 2 * radii[1]) + 4, n = 2 * half;
+    std::vector<float> line(std::size_t(n), 0.0f);
+    std::fill(line.begin(), line.begin() + half, 1.0f);
+    const std::vector<float> near = boxBlur(line, n, 1, radii[0], EdgeMode::Clamped);
+    const std::vector<float> wide = boxBlur(boxBlur(line, n, 1, radii[1], EdgeMode::Clamped), n, 1,
+                                            radii[1], EdgeMode::Clamped);
+    float peak = 0.0f;
+    for (std::size_t i = 0; i < line.size(); ++i)
+        peak = std::max(peak, near[i] - wide[i]);
+    return peak;
+}
+
 std::array<int, 2> WatercolourEdges::radii(int width, float edgeWidth) {
     const float wide = edgeWidth * float(width);
     return {int(std::lround(wide / 3.0f)), std::max(1, int(std::lround(wide)))};
@@ -102,6 +117,7 @@ WatercolourEdges::WatercolourEdges(const State& state, float edgeWidth, EdgeMode
     for (std::size_t i = 0; i < wide.size(); ++i)
         wide[i] = std::max(0.0f, near[i] - wide[i]);
     m_band = std::move(wide);
+    m_scale = 1.0f / crispPeak(r);
 }
 
 void paintWatercolourRow(const State& state, int y, const WatercolourLook& look, float* rgb,
@@ -115,8 +131,7 @@ void paintWatercolourRow(const State& state, int y, const WatercolourLook& look,
     const float* dry[2] = {state.plane(M::D1) + row, state.plane(M::D2) + row};
     const float* band = edges ? edges->band() + row : nullptr;
     for (std::size_t x = 0; x < w; ++x) {
-        // Half a straight edge's band is 0.5: the rim is 1 + edgeDarkening times the deposit.
-        const float rim = band ? 1.0f + 2.0f * edgeDarkening * band[x] : 1.0f;
+        const float rim = band ? 1.0f + edgeDarkening * edges->scale() * band[x] : 1.0f;
         const float tint =
             1.0f - look.grain * (stick[x] - 0.5f) - look.sheen * std::clamp(water[x], 0.0f, 1.0f);
         for (int c = 0; c < 3; ++c) {

@@ -35,21 +35,22 @@ struct WatercolourLook {
 // 1997's darkening at the edge of the wet-area mask), not a flow in the
 // simulation: this model's linear diffusion cannot carry pigment to a pinned
 // edge (watercolour.hpp), so its own rim is only ~1.08x its middle.
-// The wet-area mask is where the paper was wet, m = g / (g + kWetHalf) from
-// the water gone g (smooth: water moves fast; saturated: a wash's inside is
-// 1 however deep it was). Its band
+// The wet-area mask is where the paper was wet, m = smoothstep(kWetEdge) of
+// the water gone g (smooth: water moves fast; 1 inside a wash however deep
+// it was). Its band
 //   band = max(0, near(m) - wide(m))
-// is 0 inside a wash and on dry paper and about 0.5 just inside the wash's
-// edge, fading inwards over the width; near is a box blur of radius
+// is 0 inside a wash and on dry paper and peaks just inside the wash's edge,
+// fading inwards over the width; near is a box blur of radius
 // round(width / 3) cells, wide two box blurs of radius round(width) cells,
 // width = edgeWidth x the image's width in cells (the same look at any size,
 // as strokes are sized). The painter multiplies a texel's deposits by
-// 1 + 2 edgeDarkening band: a dried wash is 1 + edgeDarkening times darker at
-// its edge. Suspended (wet) pigment is not darkened. Two washes painted into
-// each other wet share one wet area (no edge between them, as wet-in-wet
-// has none). Blurs read across the image's border as the session's edges do
-// (periodic wraps, clamped repeats the border texel); the row passes use
-// running sums (O(1) a texel whatever the width).
+// 1 + edgeDarkening band / crispPeak: a wash with a sharp edge is painted
+// 1 + edgeDarkening times denser at the band's peak, one whose mask rises
+// over several cells less. Suspended (wet) pigment is not darkened. Two
+// washes painted into each other wet share one wet area (no edge between
+// them, as wet-in-wet has none). Blurs read across the image's border as the
+// session's edges do (periodic wraps, clamped repeats the border texel); the
+// row passes use running sums (O(1) a texel whatever the width).
 class WatercolourEdges {
 public:
     // Water gone over which the mask rises from 0 to 1 (a smoothstep).
@@ -58,11 +59,17 @@ public:
     WatercolourEdges(const State& state, float edgeWidth, EdgeMode edges);
     // The band at cell (x, y), row-major, width x height.
     const float* band() const { return m_band.data(); }
+    // 1 / crispPeak of this state's radii: what the painter scales the band by.
+    float scale() const { return m_scale; }
     // The radii in cells (near, wide) for a state `width` cells wide.
     static std::array<int, 2> radii(int width, float edgeWidth);
+    // The band's largest value across a sharp, straight edge of a wash for
+    // these radii (wider boxes blur the edge further: a smaller peak).
+    static float crispPeak(const std::array<int, 2>& radii);
 
 private:
     std::vector<float> m_band;
+    float m_scale = 1.0f;
 };
 
 // Paints row y of a watercolour-model state (WatercolourModel's chemical

@@ -60,7 +60,7 @@ struct ColorMapSpec {
     // (WatercolourEdges, core/output/watercolour_paint.hpp): its strength
     // (0: none) and the band's width as a fraction of the image's width, as
     // the strokes' radii are given.
-    float edgeDarkening = 1.5f;
+    float edgeDarkening = 1.0f;
     float edgeWidth = 0.015f;
 };
 
