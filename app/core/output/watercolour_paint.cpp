@@ -22,16 +22,25 @@ int across(int i, int n, EdgeMode edges) {
 void blurRows(const std::vector<float>& in, std::vector<float>& out, int w, int h, int r,
               EdgeMode edges) {
     const double scale = 1.0 / double(2 * r + 1);
-#pragma omp parallel for schedule(static) if (std::size_t(w) * std::size_t(h) >= 65536)
-    for (int y = 0; y < h; ++y) {
-        const float* src = in.data() + std::size_t(y) * std::size_t(w);
-        float* dst = out.data() + std::size_t(y) * std::size_t(w);
-        double sum = 0.0;
-        for (int j = -r; j <= r; ++j)
-            sum += src[across(j, w, edges)];
-        for (int x = 0; x < w; ++x) {
-            dst[x] = float(sum * scale);
-            sum += double(src[across(x + r + 1, w, edges)]) - double(src[across(x - r, w, edges)]);
+#pragma omp parallel if (std::size_t(w) * std::size_t(h) >= 65536)
+    {
+        // The row with r + 1 texels either side as the edges read them, so
+        // the running sum needs no index arithmetic.
+        std::vector<float> padded(std::size_t(w + 2 * r + 2));
+#pragma omp for schedule(static)
+        for (int y = 0; y < h; ++y) {
+            const float* src = in.data() + std::size_t(y) * std::size_t(w);
+            float* dst = out.data() + std::size_t(y) * std::size_t(w);
+            for (int x = -r - 1; x <= w + r; ++x)
+                padded[std::size_t(x + r + 1)] = src[across(x, w, edges)];
+            const float* p = padded.data() + r + 1; // p[x] is texel x
+            double sum = 0.0;
+            for (int j = -r; j <= r; ++j)
+                sum += p[j];
+            for (int x = 0; x < w; ++x) {
+                dst[x] = float(sum * scale);
+                sum += double(p[x + r + 1]) - double(p[x - r]);
+            }
         }
     }
 }
@@ -106,7 +115,9 @@ WatercolourEdges::WatercolourEdges(const State& state, float edgeWidth, EdgeMode
     // grain does not show in it.
     const float* gone = state.plane(M::G);
     std::vector<float> wet(state.cellCount());
-    for (std::size_t i = 0; i < wet.size(); ++i) {
+    const auto n = std::ptrdiff_t(wet.size());
+#pragma omp parallel for schedule(static) if (n >= 65536)
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
         const float g = std::isfinite(gone[i]) ? std::max(0.0f, gone[i]) : 0.0f;
         const float t = std::clamp((g - kWetEdge[0]) / (kWetEdge[1] - kWetEdge[0]), 0.0f, 1.0f);
         wet[i] = t * t * (3.0f - 2.0f * t);
@@ -114,8 +125,9 @@ WatercolourEdges::WatercolourEdges(const State& state, float edgeWidth, EdgeMode
     const std::vector<float> near = boxBlur(wet, w, h, r[0], edges);
     std::vector<float> wide =
         boxBlur(boxBlur(std::move(wet), w, h, r[1], edges), w, h, r[1], edges);
-    for (std::size_t i = 0; i < wide.size(); ++i)
-        wide[i] = std::max(0.0f, near[i] - wide[i]);
+#pragma omp parallel for schedule(static) if (n >= 65536)
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+        wide[std::size_t(i)] = std::max(0.0f, near[std::size_t(i)] - wide[std::size_t(i)]);
     m_band = std::move(wide);
     m_scale = 1.0f / crispPeak(r);
 }
