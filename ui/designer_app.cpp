@@ -247,7 +247,8 @@ void Designer::writeRecordedFrame() {
     guarded("record", [&] {
         const State state = m_doc.run().state();
         const std::vector<float> rgb =
-            applyColormap(state, m_doc.liveChemical(), m_doc.liveColormap(), m_doc.live().edges);
+            applyColormap(state, m_doc.liveChemical(),
+                          colormapOn(m_doc.liveColormap(), m_doc.live()), m_doc.live().edges);
         writeRgbImage(framePath(m_recordDir, m_recordIndex++), rgb, state.width(), state.height(),
                       8);
         written = true;
@@ -611,10 +612,7 @@ void Designer::refreshDisplay() {
         spec.edgeDarkening = m_colormapDraft->edgeDarkening;
         spec.edgeWidth = m_colormapDraft->edgeWidth;
     }
-    // An atlas's tiles are not neighbours in the texture: no watercolour
-    // edges across them (as on the model, surface_colours.cpp).
-    if (live.surface.active())
-        spec.edgeDarkening = 0.0f;
+    spec = colormapOn(spec, live);
     guarded("display", [&] {
         if (m_scrub && *m_scrub < m_doc.history().size())
             m_display->upload(m_doc.history().state(*m_scrub), chemical, spec, live.edges);

@@ -669,8 +669,8 @@ void Designer::drawWatercolourEdges() {
     };
     slider("dark edges", &spec.edgeDarkening, 0.0f, 4.0f, "%.2f", ImGuiSliderFlags_None,
            "How much denser a dried wash is painted at its edge (1: twice, where the edge is "
-           "sharp). A render effect "
-           "on where the paper was wet; the simulation is unchanged. Not on a model.");
+           "sharp). A render effect on where the paper was wet; the simulation is unchanged. "
+           "Not on a model.");
     slider("edge width", &spec.edgeWidth, 0.001f, 0.25f, "%.3f", ImGuiSliderFlags_Logarithmic,
            "The dark band's width, a fraction of the canvas width (as brush radii are).");
     if (changed) {

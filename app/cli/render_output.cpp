@@ -99,7 +99,8 @@ void writeRenderOutput(const RunResult& result, const std::string& imagePath,
     } else {
         const int chemical = colormapChemical(session.colormap, model);
         writeColourMapped(files.stage(imagePath),
-                          ColourMapRows(result.state, chemical, session.colormap, session.edges),
+                          ColourMapRows(result.state, chemical,
+                                        colormapOn(session.colormap, session), session.edges),
                           bitDepth);
     }
     saveSessionFile(session, files.stage(sessionPath));

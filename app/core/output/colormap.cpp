@@ -136,6 +136,13 @@ bool isWatercolourMap(const ColorMapSpec& spec) {
     return parsePalette(spec.name) == Palette::Watercolour;
 }
 
+ColorMapSpec colormapOn(const ColorMapSpec& spec, const Session& session) {
+    ColorMapSpec on = spec;
+    if (session.surface.active())
+        on.edgeDarkening = 0.0f;
+    return on;
+}
+
 int colormapChemical(const ColorMapSpec& spec, const ReactionModel& model) {
     if (spec.chemical.empty())
         return model.displayChemical();

@@ -33,6 +33,11 @@ std::vector<std::array<float, 3>> colormapAnchors(const ColorMapSpec& spec);
 // Throws InputError for an unknown name.
 bool isWatercolourMap(const ColorMapSpec& spec);
 
+// `spec` as `session`'s images are painted with it: on a surface atlas the
+// watercolour map has no dark edges (its blurs would read across tiles that
+// are not neighbours in the texture; watercolour_paint.hpp).
+ColorMapSpec colormapOn(const ColorMapSpec& spec, const Session& session);
+
 // Most anchors a map has (the GPU display pass's uniform array).
 constexpr int kMaxColormapAnchors = 16;
 

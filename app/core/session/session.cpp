@@ -273,6 +273,12 @@ void readParamMaps(const FieldReader& top, const json& maps, const ReactionModel
 }
 
 // "colormap"; its chemical must be one of `shown`, the model of the final state.
+// The map's name as written (colormap.hpp's isWatercolourMap would throw on
+// a name not yet checked).
+bool namesWatercolour(const std::string& name) {
+    return name == "watercolour" || name == "watercolor";
+}
+
 ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const ReactionModel& shown,
                               bool lastStageModel) {
     FieldReader reader(cm, top.source(), "colormap");
@@ -306,7 +312,7 @@ ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const Reac
     } else if (isCustomColormapName(spec.name)) {
         reader.failField("name", "is 'custom', which needs \"colours\": [\"#rrggbb\", ...]");
     }
-    if ((spec.name == "watercolour" || spec.name == "watercolor") && !paintsAsWatercolour(shown))
+    if (namesWatercolour(spec.name) && !paintsAsWatercolour(shown))
         reader.failField("name", "is 'watercolour', which paints the watercolour model's "
                                  "pigments; model '" +
                                      shown.name() + "' has none (use another map)");
@@ -327,9 +333,8 @@ ColorMapSpec colormapFromJson(const FieldReader& top, const json& cm, const Reac
         if (!(spec.levels[0] < spec.levels[1]))
             reader.failField("levels", "must be an array [low, high] with 0 <= low < high <= 1");
     }
-    const bool watercolour = spec.name == "watercolour" || spec.name == "watercolor";
     for (const char* key : {"edge_darkening", "edge_width"})
-        if (!watercolour && reader.find(key))
+        if (!namesWatercolour(spec.name) && reader.find(key))
             reader.failField(key, "applies only to the map named \"watercolour\", not '" +
                                       spec.name + "'");
     spec.edgeDarkening = float(reader.number("edge_darkening", spec.edgeDarkening, 0, 4));
@@ -461,7 +466,7 @@ json sessionToJson(const Session& s) {
     }
     if (s.colormap.levels != ColorMapSpec{}.levels)
         cm["levels"] = s.colormap.levels;
-    if (s.colormap.name == "watercolour" || s.colormap.name == "watercolor") {
+    if (namesWatercolour(s.colormap.name)) {
         cm["edge_darkening"] = s.colormap.edgeDarkening;
         cm["edge_width"] = s.colormap.edgeWidth;
     }

@@ -55,12 +55,7 @@ SurfaceColours surfaceColours(const State& state, const Session& session, const 
     SurfaceColours c;
     c.height.assign(atlas.cellCount(), 0.0f);
     c.colours.assign(atlas.cellCount(), {0, 0, 0, 255});
-    // The watercolour map's dark edges are found by blurs across the image;
-    // across an atlas those would read unrelated tiles, so a model's paint
-    // goes without them (watercolour_paint.hpp).
-    ColorMapSpec spec = session.colormap;
-    spec.edgeDarkening = 0.0f;
-    const ColourMapRows rows(state, chemical, spec, low, high);
+    const ColourMapRows rows(state, chemical, colormapOn(session.colormap, session), low, high);
     std::vector<float> rgb(std::size_t(atlas.width()) * 3);
     for (int y = 0; y < atlas.height(); ++y) {
         rows.row(y, rgb.data());
