@@ -4,7 +4,6 @@
 #include <string>
 
 #include "core/base/errors.hpp"
-#include "core/io/image_io.hpp"
 #include "core/output/colormap.hpp"
 #include "core/output/watercolour_paint.hpp"
 #include "core/sim/cpu_simulator.hpp"
@@ -175,20 +174,9 @@ void Display::upload(const State& state, int chemical, const ColorMapSpec& spec,
     const std::size_t w = std::size_t(m_width);
     std::vector<std::uint8_t>& rgba = m_uploadRgba;
     rgba.resize(state.cellCount() * 4);
-#pragma omp parallel if (state.cellCount() >= 65536)
-    {
-        std::vector<float> rgb(w * 3);
-#pragma omp for schedule(static)
-        for (int y = 0; y < m_height; ++y) {
-            rows.row(y, rgb.data());
-            std::uint8_t* out = rgba.data() + std::size_t(y) * w * 4;
-            for (std::size_t x = 0; x < w; ++x) {
-                for (std::size_t k = 0; k < 3; ++k)
-                    out[x * 4 + k] = toUnorm8(rgb[x * 3 + k]);
-                out[x * 4 + 3] = 255;
-            }
-        }
-    }
+#pragma omp parallel for schedule(static) if (state.cellCount() >= 65536)
+    for (int y = 0; y < m_height; ++y)
+        rows.rowRgba8(y, rgba.data() + std::size_t(y) * w * 4);
     glBindTexture(GL_TEXTURE_2D, m_display.id());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE,

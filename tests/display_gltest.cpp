@@ -87,11 +87,12 @@ void expectGpuMatchesWriter(const Session& s, const State& state, const Case& c)
     // A real picture, not a flat field that would match trivially.
     EXPECT_GT(distinctColours(expected), 20);
 
-    // The CPU path is the writer's quantisation exactly.
+    // The CPU path: the writer's colours through ColourMapRows::rowRgba8's
+    // table, which moves a channel by at most one step.
     CpuSimulator cpu(s);
     cpu.setState(state);
     display.update(cpu, chemical, spec);
-    EXPECT_EQ(compare(display.downloadRgba8(), expected).first, 0);
+    EXPECT_LE(compare(display.downloadRgba8(), expected).first, 1);
     // And the front sends a GpuSimulator down the GPU path.
     display.update(gpu, chemical, spec);
     EXPECT_LE(compare(display.downloadRgba8(), expected).first, 1);

@@ -4,6 +4,7 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 
@@ -175,7 +176,7 @@ ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpe
     : m_state(state), m_chemical(chemical), m_palette(colormapAnchors(spec)),
       m_levelLow(spec.levels[0]), m_levelScale(1.0f / (spec.levels[1] - spec.levels[0])),
       m_paint(paintsState(spec, state)) {
-    findEdges(spec, edges);
+    prepare(spec, edges);
     const float* p = state.plane(chemical);
     const std::ptrdiff_t n = std::ptrdiff_t(state.cellCount());
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
@@ -199,12 +200,20 @@ ColourMapRows::ColourMapRows(const State& state, int chemical, const ColorMapSpe
       m_scale(1.0f / (high - low)), m_levelLow(spec.levels[0]),
       m_levelScale(1.0f / (spec.levels[1] - spec.levels[0])), m_paint(paintsState(spec, state)) {
     assert(low < high);
-    findEdges(spec, edges);
+    prepare(spec, edges);
 }
 
 ColourMapRows::~ColourMapRows() = default;
 
-void ColourMapRows::findEdges(const ColorMapSpec& spec, EdgeMode edges) {
+void ColourMapRows::prepare(const ColorMapSpec& spec, EdgeMode edges) {
+    if (!m_paint) {
+        // rowRgba8's table: the palette at kScreenSteps evenly spaced t.
+        m_screen.resize(kScreenSteps);
+        for (int i = 0; i < kScreenSteps; ++i) {
+            const Rgb c = samplePalette(m_palette, float(i) / float(kScreenSteps - 1));
+            m_screen[std::size_t(i)] = {toUnorm8(c[0]), toUnorm8(c[1]), toUnorm8(c[2]), 255};
+        }
+    }
     if (!m_paint || !(spec.edgeDarkening > 0.0f))
         return;
     m_edgeDarkening = spec.edgeDarkening;
@@ -227,6 +236,29 @@ void ColourMapRows::row(int y, float* rgb) const {
         rgb[x * 3 + 0] = c[0];
         rgb[x * 3 + 1] = c[1];
         rgb[x * 3 + 2] = c[2];
+    }
+}
+
+void ColourMapRows::rowRgba8(int y, std::uint8_t* rgba) const {
+    const std::size_t w = std::size_t(m_state.width());
+    if (m_paint) {
+        thread_local std::vector<float> rgb;
+        rgb.resize(w * 3);
+        row(y, rgb.data());
+        for (std::size_t x = 0; x < w; ++x) {
+            for (std::size_t k = 0; k < 3; ++k)
+                rgba[x * 4 + k] = toUnorm8(rgb[x * 3 + k]);
+            rgba[x * 4 + 3] = 255;
+        }
+        return;
+    }
+    // row()'s t, scaled to the table's index and rounded.
+    const float* p = m_state.plane(m_chemical) + std::size_t(y) * w;
+    const float steps = float(kScreenSteps - 1);
+    for (std::size_t x = 0; x < w; ++x) {
+        const float normalised = std::isfinite(p[x]) ? (p[x] - m_low) * m_scale : 0.0f;
+        const float t = std::clamp((normalised - m_levelLow) * m_levelScale, 0.0f, 1.0f);
+        std::memcpy(rgba + x * 4, m_screen[std::size_t(t * steps + 0.5f)].data(), 4);
     }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -69,9 +70,16 @@ public:
     int height() const { return m_state.height(); }
     // Row y's interleaved RGB in [0, 1] (width * 3 values).
     void row(int y, float* rgb) const;
+    // Row y for the screen: RGBA8 (width * 4 bytes, alpha 255). A palette
+    // goes through a table of kScreenSteps colours, within one step of 255
+    // of row() rounded (the designer's CPU display does this every frame,
+    // and row() and the rounding were a fifth of a frame's interface); the
+    // watercolour map is row() rounded, exactly.
+    void rowRgba8(int y, std::uint8_t* rgba) const;
+    static constexpr int kScreenSteps = 4096;
 
 private:
-    void findEdges(const ColorMapSpec& spec, EdgeMode edges);
+    void prepare(const ColorMapSpec& spec, EdgeMode edges);
 
     const State& m_state;
     int m_chemical;
@@ -81,6 +89,7 @@ private:
     float m_levelLow;
     float m_levelScale;
     bool m_paint = false; // the watercolour map: paintWatercolourRow, not the palette
+    std::vector<std::array<std::uint8_t, 4>> m_screen; // rowRgba8's table (palettes)
     float m_edgeDarkening = 0.0f;
     std::unique_ptr<WatercolourEdges> m_edges; // the watercolour map's, when it darkens
 };
