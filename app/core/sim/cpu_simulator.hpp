@@ -66,6 +66,10 @@ private:
     // own, tiles in parallel, while it fits in cache (cpu_tile_runs.cpp);
     // false where the one-pass row kernels must run instead.
     bool runTilesApart(int steps);
+    // A plain grid on a fused kernel (no frozen cells): run() takes its steps
+    // in one parallel region (runFusedGridSteps), the same arithmetic as step().
+    bool fusedGridSteps() const;
+    void runFusedGridSteps(int steps);
     const Session& liveSession() const override { return m_session; }
     const StepConstants& stepConstants() const override { return m_k; }
     void applyLiveChange(Session next) override;
