@@ -28,6 +28,12 @@ bool threaded(const State& state) {
     return state.cellCount() >= 65536;
 }
 
+// The first row of thread t's band of h rows among `threads`, as
+// schedule(static) would split them (its band ends where t + 1's starts).
+int bandStart(int h, int t, int threads) {
+    return int(std::int64_t(h) * t / threads);
+}
+
 // Runs band(y0, y1) on one contiguous band of rows per thread, as
 // schedule(static) would split them, with one kernel call per band rather
 // than per row.
@@ -37,7 +43,7 @@ template <class Band> void forEachBand(const State& state, const Band& band) {
     {
         const FlushDenormals flush;
         const int t = omp_get_thread_num(), threads = omp_get_num_threads();
-        band(int(std::int64_t(h) * t / threads), int(std::int64_t(h) * (t + 1) / threads));
+        band(bandStart(h, t, threads), bandStart(h, t + 1, threads));
     }
 }
 
@@ -281,8 +287,7 @@ void CpuSimulator::runFusedGridSteps(int steps) {
         const int t = omp_get_thread_num(), threads = omp_get_num_threads();
 #pragma omp single
         barrier.emplace(threads);
-        const int y0 = int(std::int64_t(h) * t / threads);
-        const int y1 = int(std::int64_t(h) * (t + 1) / threads);
+        const int y0 = bandStart(h, t, threads), y1 = bandStart(h, t + 1, threads);
         State* current = &m_current;
         State* next = &m_next;
         for (int i = 0; i < steps; ++i) {
