@@ -95,6 +95,11 @@ TEST(Cascade, BrokenStagesAndMapsAreNamed) {
     EXPECT_NE(errorFor(R"({"model": "turing_turk", "stages": [{"freeze": {"chemical": "q"}}]})")
                   .find("'stages[0].freeze.chemical' is 'q'"),
               std::string::npos);
+    // Nothing to freeze before the first stage has run.
+    EXPECT_NE(errorFor(R"({"model": "turing_turk", "stages": [{"freeze": {"chemical": "b"}},
+                                                             {"steps": 1}]})")
+                  .find("'stages[0].freeze' cannot be on the first stage"),
+              std::string::npos);
     EXPECT_NE(errorFor(R"({"model": "turing_turk", "stages": [{"params": {"z": 1}}]})")
                   .find("'stages[0].params.z' is not a parameter"),
               std::string::npos);

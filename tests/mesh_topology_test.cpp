@@ -272,6 +272,31 @@ TEST(MeshTopology, ZeroAreaTrianglesAreCountedAndKept) {
               0u);
 }
 
+TEST(MeshTopology, AMeshOfOnlyZeroAreaTrianglesIsNotUsable) {
+    // Two triangles, each with its corners on a line: manifold, but no
+    // surface. mesh-info's verdict and render's check are the same function.
+    TriangleMesh m = make({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}, {{0, 1, 2}, {1, 3, 2}});
+    const MeshReport r = checkMesh(m);
+    EXPECT_TRUE(r.manifold());
+    EXPECT_EQ(r.zeroAreaTriangles.count, 2u);
+    EXPECT_FALSE(r.hasArea());
+    EXPECT_FALSE(r.usableForTiles());
+    EXPECT_NE(whyNotUsableForTiles(r).find("every triangle is zero-area"), std::string::npos);
+    try {
+        requireUsableForTiles(r, "flat.obj");
+        FAIL() << "a mesh without area was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("flat.obj: the surface has no area"),
+                  std::string::npos)
+            << e.what();
+    }
+    // One real triangle among them makes it usable.
+    TriangleMesh withArea =
+        make({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {1, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+    EXPECT_TRUE(checkMesh(withArea).usableForTiles());
+    EXPECT_EQ(whyNotUsableForTiles(checkMesh(withArea)), "");
+}
+
 TEST(MeshTopology, SlightlyMisplacedSeamStaysOpenAndIsPointedOut) {
     // The cylinder's seam column stored twice, the copy 1e-7 away: exact welding
     // leaves the seam open (one long boundary loop), the report names it.

@@ -8,6 +8,11 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -229,4 +234,149 @@ TEST(OutputFilesDeathTest, SignalCleanupRemovesTemporariesAndStagedSeries) {
         },
         ::testing::ExitedWithCode(0), "");
     EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+namespace {
+
+// Runs `body` in a child process that ends with SIGKILL (as a crash or
+// `kill -9` would; `body` sends it itself while its files are live, else it
+// comes when `body` returns); waits for it. The child's temporaries
+// carry its process id, which no longer runs afterwards.
+template <class F> void inKilledChild(F body) {
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        body();
+        ::kill(::getpid(), SIGKILL);
+        std::_Exit(0); // not reached
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the child exited instead of being killed";
+}
+
+} // namespace
+
+TEST(OutputFiles, ACommitKilledBetweenItsRenamesIsFinishedByTheNextRun) {
+    // A render's image and session, the run killed after the image's rename:
+    // the folder holds a new image beside the old session until the next run
+    // to it, which finishes the commit from the journal before anything else.
+    const fs::path dir = freshDir("killed_commit");
+    writeText(dir / "out.png", "old image");
+    writeText(dir / "out.json", "old session");
+    inKilledChild([&] {
+        OutputFiles files;
+        writeTextAtomically(files.stage((dir / "out.png").string()), "new image");
+        writeTextAtomically(files.stage((dir / "out.json").string()), "new session");
+        files.commit([](int renamed) {
+            if (renamed == 1)
+                ::kill(::getpid(), SIGKILL);
+        });
+    });
+    EXPECT_EQ(readText(dir / "out.png"), "new image");
+    EXPECT_EQ(readText(dir / "out.json"), "old session"); // the gap the journal closes
+    EXPECT_GE(temporariesIn(dir), 2);                     // the session's temporary, the journal
+    recoverInterruptedOutput(dir.string());
+    EXPECT_EQ(readText(dir / "out.png"), "new image");
+    EXPECT_EQ(readText(dir / "out.json"), "new session");
+    EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+TEST(OutputFiles, ACommitKilledAcrossTwoFoldersIsFinishedFromEither) {
+    // A texture set in a sub-folder and the image beside it: the journal is
+    // in both folders, and the next run to either finishes the whole set.
+    const fs::path dir = freshDir("killed_two_folders");
+    fs::create_directories(dir / "tex");
+    writeText(dir / "tex" / "albedo.png", "old albedo");
+    writeText(dir / "out.json", "old session");
+    inKilledChild([&] {
+        OutputFiles files;
+        writeTextAtomically(files.stage((dir / "tex" / "albedo.png").string()), "new albedo");
+        writeTextAtomically(files.stage((dir / "out.json").string()), "new session");
+        files.commit([](int renamed) {
+            if (renamed == 1)
+                ::kill(::getpid(), SIGKILL);
+        });
+    });
+    recoverInterruptedOutput((dir / "tex").string());
+    EXPECT_EQ(readText(dir / "tex" / "albedo.png"), "new albedo");
+    EXPECT_EQ(readText(dir / "out.json"), "new session");
+    EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+TEST(OutputFiles, TemporariesOfAKilledRunAreRemovedByTheNextRunToTheFolder) {
+    const fs::path dir = freshDir("killed_temporaries");
+    writeText(dir / "out.png", "old image");
+    inKilledChild([&] {
+        OutputFiles files;
+        const std::string tmp = files.stage((dir / "out.png").string());
+        writeTextAtomically(tmp, "half an image");
+        StagedSequence frames(dir.string(), "frame_", ".png");
+        writeTextAtomically(frames.path(0), "frame");
+        frames.written(0);
+        ::kill(::getpid(), SIGKILL); // before the destructors clean up
+    });
+    EXPECT_EQ(temporariesIn(dir), 2); // a temporary and a staging folder (holding a frame)
+    // A live process's temporaries stay (this one's).
+    OutputFiles mine;
+    writeTextAtomically(mine.stage((dir / "other.txt").string()), "mine");
+    recoverInterruptedOutput(dir.string());
+    EXPECT_EQ(temporariesIn(dir), 1);
+    EXPECT_EQ(readText(dir / "out.png"), "old image");
+    mine.commit();
+    EXPECT_EQ(temporariesIn(dir), 0);
+    // The next run's first stage() in a folder is what cleans it up.
+    const fs::path again = freshDir("killed_then_stage");
+    inKilledChild([&] {
+        OutputFiles files;
+        writeTextAtomically(files.stage((again / "a.png").string()), "half");
+        ::kill(::getpid(), SIGKILL);
+    });
+    OutputFiles next;
+    next.stage((again / "b.png").string());
+    EXPECT_EQ(temporariesIn(again), 0) << "stage() did not clean up the killed run's temporary";
+}
+
+TEST(OutputFiles, TwoRunsCommittingToTheSamePathsNeverMixTheirFiles) {
+    // Each run's pair is renamed under a lock on the folder: whichever run
+    // commits last, its image and its session are the pair left.
+    const fs::path dir = freshDir("concurrent");
+    for (int round = 0; round < 3; ++round) {
+        std::vector<pid_t> children;
+        for (int run = 0; run < 2; ++run) {
+            const pid_t child = ::fork();
+            ASSERT_GE(child, 0);
+            if (child == 0) {
+                const std::string name = "run " + std::to_string(run);
+                OutputFiles files;
+                writeTextAtomically(files.stage((dir / "out.png").string()), name);
+                writeTextAtomically(files.stage((dir / "out.json").string()), name);
+                // A slow rename: the other run's commit would fall between these.
+                files.commit([](int) { ::usleep(20000); });
+                std::_Exit(0);
+            }
+            children.push_back(child);
+        }
+        for (pid_t child : children) {
+            int status = 0;
+            ASSERT_EQ(::waitpid(child, &status, 0), child);
+            ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+        }
+        EXPECT_EQ(readText(dir / "out.png"), readText(dir / "out.json")) << "round " << round;
+    }
+    EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+TEST(OutputFiles, AShortWriteIsCaughtBeforeTheRename) {
+    const fs::path dir = freshDir("short_write");
+    writeText(dir / "data.bin", "abc");
+    EXPECT_NO_THROW(checkWrittenSize((dir / "data.bin").string(), 3, "data.bin"));
+    try {
+        checkWrittenSize((dir / "data.bin").string(), 10, "final.bin");
+        FAIL() << "a short file passed";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("final.bin: writing the file failed: 3 of 10 bytes"),
+                  std::string::npos)
+            << e.what();
+    }
 }

@@ -632,5 +632,27 @@ TEST(SegmentLimits, SegmentsPastAnIntInAllAreRefused) {
     EXPECT_NE(message.find("more than the engine runs in one go"), std::string::npos) << message;
 }
 
+TEST(JsonInput, ADuplicatedKeyIsRefusedWithItsPath) {
+    // nlohmann keeps the last of two equal keys; a session that says a thing
+    // twice is more likely a slip than a wish.
+    const std::string top = errorOf([] { parseJsonText(R"({"dt": 1, "dt": 2})", "d.json"); });
+    EXPECT_NE(top.find("d.json: key 'dt' appears twice in one object"), std::string::npos) << top;
+    const std::string nested = errorOf([] {
+        parseJsonText(R"({"colormap": {"name": "grey"}, "edits": [{"step": 1, "step": 2}]})",
+                      "n.json");
+    });
+    EXPECT_NE(nested.find("key 'edits[].step' appears twice"), std::string::npos) << nested;
+    // The same key in two objects, and a key equal to a value, are fine.
+    EXPECT_NO_THROW(parseJsonText(R"({"a": {"x": 1}, "b": {"x": 2}, "c": "a"})", "ok.json"));
+    EXPECT_NO_THROW(parseJsonText(R"([{"x": 1}, {"x": 2}])", "ok.json"));
+    // Through the session reader too.
+    const std::string session = errorOf([] {
+        sessionFromJson(
+            parseJsonText(R"({"model": "gray_scott", "size": 16, "size": 32})", "s.json"),
+            "s.json");
+    });
+    EXPECT_NE(session.find("key 'size' appears twice"), std::string::npos) << session;
+}
+
 } // namespace
 } // namespace morphogen

@@ -201,6 +201,49 @@ TEST(SessionRun, BlowUpNamesTheStageAndTheStepRange) {
     }
 }
 
+TEST(SessionRun, ABlowUpFromPiledUpStrokesBlamesTheStrokesNotTheTimeStep) {
+    // Twelve strokes adding v on one spot at a stable dt: v leaves Gray-Scott's
+    // sane range because of the strokes, and a smaller dt would not help.
+    Session s = test::smallSession("gs_coral", 32, 100);
+    for (int i = 0; i < 12; ++i) {
+        LiveEdit e;
+        e.step = 10 + i;
+        StrokeSpec stroke;
+        stroke.mode = BrushMode::Add;
+        stroke.chemical = "v";
+        stroke.value = 0.5f;
+        stroke.points = {{0.5, 0.5}};
+        stroke.radius = 0.2;
+        e.stroke = stroke;
+        s.edits.push_back(e);
+    }
+    SessionRun run(s, cpu(), 25);
+    try {
+        while (!run.finished())
+            run.advance(1000);
+        FAIL() << "expected a blow-up";
+    } catch (const BlowUpError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("the time step is within its stability limit, so it is not the "
+                               "cause: 12 strokes put chemicals in"),
+                  std::string::npos)
+            << message;
+        EXPECT_EQ(message.find("--dt"), std::string::npos) << message;
+    }
+    // At an unstable dt the time step is still named first.
+    s.dt = 5.0f;
+    SessionRun unstable(s, cpu(), 25);
+    try {
+        while (!unstable.finished())
+            unstable.advance(1000);
+        FAIL() << "expected a blow-up";
+    } catch (const BlowUpError& e) {
+        EXPECT_NE(std::string(e.what()).find("try a smaller time step such as --dt"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 // --- Live changes ----------------------------------------------------------------
 
 namespace {

@@ -1,4 +1,5 @@
 #include "ui/designer_app.hpp"
+#include "ui/crash_recovery.hpp"
 
 #include <signal.h>
 #include <unistd.h>
@@ -98,20 +99,21 @@ Designer::Designer(const DesignerOptions& options, const DesignerServices& servi
         m_redraw = std::make_unique<PartialRedraw>(std::vector<std::string>{"Canvas", "Model"},
                                                    std::vector<std::string>{"Canvas"});
 
+    // A crash (or a kill) leaves its autosave behind: kept aside before this
+    // run autosaves anything, and offered back.
+    m_recovered = keepCrashedAutosaves(m_settings.stateDir);
+    m_offerRestore = options.script.empty() && !m_recovered.empty();
+
     // What to open: the command line's choice, else the session open at the
     // last exit, else the default preset.
     if (!options.session.empty())
         openSessionFile(options.session);
     else if (!options.preset.empty())
         openPreset(options.preset);
-    else if (!m_settings.lastSession.empty() && fs::exists(m_settings.lastSession))
-        openSessionFile(m_settings.lastSession);
     else
-        openPreset(m_settings.lastPreset.empty() ? kDefaultPreset : m_settings.lastPreset);
+        openRemembered();
     if (!m_doc.isOpen() && !m_job)
         openPreset(kDefaultPreset);
-    // A crash (or a kill) leaves the autosave behind: offer it back.
-    m_offerRestore = options.script.empty() && fs::exists(m_settings.autosavePath());
 
     std::vector<Session> presets = allPresets();
     m_thumbnails.start(std::move(presets), m_settings.cacheDir);
@@ -351,19 +353,60 @@ void Designer::screenshot(const std::string& path) {
     m_pendingScreenshot = path;
 }
 
+void Designer::openRemembered() {
+    // designer.json may name a session that has since been moved or broken,
+    // or a preset this version lacks. That is no error of this run's: the
+    // default opens instead, and the window says why (a script goes on).
+    const std::string session = m_settings.lastSession;
+    const std::string preset = m_settings.lastPreset;
+    std::string why;
+    try {
+        if (!session.empty()) {
+            if (!fs::exists(session))
+                throw InputError(session + ": not found");
+            loadSessionFile(session); // checked here: openSessionFile would report it
+            openSessionFile(session);
+        } else if (!preset.empty()) {
+            loadPreset(preset);
+            openPreset(preset);
+        } else {
+            openPreset(kDefaultPreset);
+        }
+        return;
+    } catch (const std::exception& e) {
+        why = e.what();
+    }
+    m_settings.lastSession.clear();
+    m_settings.lastPreset.clear();
+    openPreset(kDefaultPreset);
+    m_startupNotice = "could not reopen the last " +
+                      std::string(session.empty() ? "preset" : "session") + " (" + why +
+                      "); opened " + kDefaultPreset + " instead";
+    m_status = m_startupNotice;
+    std::fprintf(stderr, "morphogen design: %s\n", m_startupNotice.c_str());
+}
+
 void Designer::restoreAutosave() {
-    const std::string path = m_settings.autosavePath();
-    if (!fs::exists(path)) {
-        reportError("there is no autosave to restore (" + path + ")");
+    if (m_recovered.empty()) {
+        reportError("there is no crashed session to restore (none in " + m_settings.stateDir + ")");
         return;
     }
-    // Opened from a copy: the autosave keeps being the crash marker until
-    // this run saves or exits cleanly.
-    const std::string copy = (fs::path(m_settings.stateDir) / "restored.json").string();
     guarded("restore", [&] {
-        fs::copy_file(path, copy, fs::copy_options::overwrite_existing);
-        openSessionFile(copy);
+        // Out of the offer first, so it is never offered (or lost) twice.
+        const std::string restored = markRestored(m_recovered.front());
+        m_recovered.erase(m_recovered.begin());
+        openSessionFile(restored);
+        if (m_doc.isOpen())
+            m_status = "restored the crashed session (kept as " + restored + ")";
     });
+}
+
+void Designer::discardRecovered() {
+    if (m_recovered.empty())
+        return;
+    std::error_code ec;
+    fs::remove(m_recovered.front(), ec);
+    m_recovered.erase(m_recovered.begin());
 }
 
 void Designer::stepOnce() {

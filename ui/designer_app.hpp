@@ -109,8 +109,14 @@ public:
     // as the export; empty dir: off.
     void recordFrames(const std::string& dir, int every);
     void screenshot(const std::string& path); // the whole window, after this frame
-    // Opens the autosave a crash left (the restore offer's button).
+    // Opens the newest session a crashed designer left (the restore offer's
+    // button); it is kept as restored-*.json in the state folder.
     void restoreAutosave();
+    // Deletes the newest crashed session (the offer's Discard).
+    void discardRecovered();
+    // What the window said at start when designer.json's session or preset
+    // could not be reopened ("" when it could).
+    const std::string& startupNotice() const { return m_startupNotice; }
     void setPlaying(bool playing) { m_playing = playing; }
     bool playing() const { return m_playing; }
     void stepOnce();
@@ -199,6 +205,8 @@ private:
     void drawPopups();
     void drawJob();
     void autosave(bool force);
+    // designer.json's session or preset, else the default with a notice.
+    void openRemembered();
     void writeScreenshot();
     void writeRecordedFrame();
     // Runs `f`, reporting an exception as an error instead of leaving the frame.
@@ -241,6 +249,8 @@ private:
     std::string m_pendingScreenshot;
     bool m_showHelp = false, m_showOpen = false, m_showSave = false, m_showExport = false;
     bool m_offerRestore = false;
+    std::vector<std::string> m_recovered; // crashed designers' sessions, newest first
+    std::string m_startupNotice;
     char m_pathBuffer[1024] = {};
     int m_exportSize[2] = {1024, 1024};
     int m_exportBits = 8;

@@ -199,19 +199,44 @@ void Designer::drawPopups() {
     }
 
     if (ImGui::BeginPopupModal("Restore", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::Text("The designer did not exit cleanly last time.");
-        ImGui::Text("Its work is autosaved in %s.", m_settings.autosavePath().c_str());
-        if (ImGui::Button("Restore it")) {
-            restoreAutosave();
+        if (m_recovered.empty()) {
             ImGui::CloseCurrentPopup();
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Discard")) {
-            std::error_code ec;
-            fs::remove(m_settings.autosavePath(), ec);
-            ImGui::CloseCurrentPopup();
+        } else {
+            ImGui::Text("The designer did not exit cleanly last time.");
+            ImGui::Text("Its unsaved work is kept in %s.", m_recovered.front().c_str());
+            if (m_recovered.size() > 1)
+                ImGui::Text("(%zu more crashed sessions are kept in that folder.)",
+                            m_recovered.size() - 1);
+            if (ImGui::Button("Restore it")) {
+                restoreAutosave();
+                ImGui::CloseCurrentPopup();
+            }
+            ImGui::SameLine();
+            if (ImGui::Button("Discard")) {
+                discardRecovered();
+                ImGui::CloseCurrentPopup();
+            }
+            ImGui::SameLine();
+            if (ImGui::Button("Later"))
+                ImGui::CloseCurrentPopup(); // kept, and offered again at the next start
         }
         ImGui::EndPopup();
+    }
+    // After the restore offer (one modal at a time); a script's run shows
+    // the notice in the status line only, so no dialog takes its input.
+    if (!m_startupNotice.empty() && m_options.script.empty() && !ImGui::IsPopupOpen("Restore")) {
+        ImGui::OpenPopup("Could not reopen");
+        if (ImGui::BeginPopupModal("Could not reopen", nullptr,
+                                   ImGuiWindowFlags_AlwaysAutoResize)) {
+            ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40);
+            ImGui::TextUnformatted(m_startupNotice.c_str());
+            ImGui::PopTextWrapPos();
+            if (ImGui::Button("OK")) {
+                m_startupNotice.clear();
+                ImGui::CloseCurrentPopup();
+            }
+            ImGui::EndPopup();
+        }
     }
 }
 

@@ -10,6 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/output_files.hpp"
+#include "ui/crash_recovery.hpp"
+
+#include <unistd.h>
 
 namespace morphogen::ui {
 
@@ -84,7 +87,7 @@ std::string Settings::imguiIniPath() const {
 }
 
 std::string Settings::autosavePath() const {
-    return (fs::path(stateDir) / "autosave.json").string();
+    return autosavePathFor(stateDir, long(::getpid()));
 }
 
 std::string Settings::lastExitPath() const {

@@ -28,9 +28,9 @@ struct Settings {
 
     std::string settingsPath() const;
     std::string imguiIniPath() const;
-    // Written every minute while there are unsaved changes and on exit;
-    // removed by a clean exit after the session is saved as lastExitPath().
-    // Found at start, it means the last run ended without a clean exit.
+    // This process's autosave (crash_recovery.hpp): written every minute
+    // while there are unsaved changes and on exit; a clean exit renames it to
+    // lastExitPath(). Found after its process ended, it means a crash.
     std::string autosavePath() const;
     std::string lastExitPath() const;
 };

@@ -155,9 +155,20 @@ Convergence timeToConverge(const Session& session, const SimulatorFactory& make,
 // A comma-separated list of sizes given to `flag`.
 std::vector<int> parseSizes(const std::string& flag, const std::string& text) {
     std::vector<int> sizes;
-    std::stringstream in(text);
-    std::string item;
-    while (std::getline(in, item, ',')) {
+    // Every item between commas counts, the empty ones too: "16," is refused
+    // rather than read as "16" (getline drops a trailing empty item).
+    std::vector<std::string> items;
+    for (std::size_t start = 0;;) {
+        const std::size_t comma = text.find(',', start);
+        items.push_back(
+            text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (comma == std::string::npos)
+            break;
+        start = comma + 1;
+    }
+    if (text.empty())
+        items.clear();
+    for (const std::string& item : items) {
         char* end = nullptr;
         const long v = std::strtol(item.c_str(), &end, 10);
         if (item.empty() || *end != '\0' || v < 8 || v > kMaxGridSide)

@@ -57,6 +57,7 @@ int scaledSteps(int steps, double scale, const std::string& preset) {
 // its shape: every level is scaled by the same factor so the finest is --size,
 // and the pattern's size relative to the image stays what the preset designed.
 void applyOverrides(Session& s, const GalleryFlags& f) {
+    const long long before = s.steps;
     if (!s.schedule.empty()) {
         std::vector<ScheduleLevel> levels = s.schedule;
         const ScheduleLevel finest = levels.back();
@@ -90,6 +91,12 @@ void applyOverrides(Session& s, const GalleryFlags& f) {
             s.steps = int(total);
         }
     }
+    // Strokes and other edits keep their place in the run: a stroke 80% of
+    // the way through stays there (and one at the end stays at the end).
+    if (before > 0 && s.steps != before)
+        for (LiveEdit& e : s.edits)
+            e.step = std::min<long long>(
+                s.steps, std::llround(double(e.step) * double(s.steps) / double(before)));
     validateSession(s, "preset " + s.name);
 }
 
@@ -321,11 +328,24 @@ void gallery(const GalleryFlags& f) {
         } else {
             ++it;
         }
-    // Every preset's overrides are checked before the first one runs.
+    // Every preset's overrides are checked before the first one runs: when
+    // none takes them, the flags are wrong (exit 2, nothing written); a
+    // preset that alone refuses them is run as failed, listed on the page.
+    std::string firstRefusal;
+    int refused = 0;
     for (const Session& preset : presets) {
         Session s = preset;
-        applyOverrides(s, f);
+        try {
+            applyOverrides(s, f);
+        } catch (const InputError& e) {
+            if (refused++ == 0)
+                firstRefusal = e.what();
+        }
     }
+    if (!presets.empty() && refused == int(presets.size()))
+        throw InputError(refused == 1
+                             ? firstRefusal
+                             : "no preset takes these options; the first: " + firstRefusal);
     const gl::BackendChoice choice = gl::parseBackendChoice(f.backend);
     const auto contextKind = gl::parseContextFlag(f.context);
     const auto gpuDevice = gl::parseGpuDeviceFlag(f.gpuDevice);

@@ -2,12 +2,15 @@
 
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <string>
 
 #include "cli/bench_memory.hpp"
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/limits.hpp"
+#include "core/base/memory_budget.hpp"
 
 int main(int argc, char** argv) {
     morphogen::cli::tuneOpenMpForTheDesigner(argc, argv);
@@ -47,6 +50,19 @@ int main(int argc, char** argv) {
     } catch (const morphogen::InputError& e) {
         std::fprintf(stderr, "morphogen: error: %s\n", e.what());
         return 2;
+    } catch (const std::bad_alloc&) {
+        // The estimate up front (memory_budget.hpp) counts only the state;
+        // what else a run allocates can still fail: say what was running.
+        const std::string what = morphogen::currentWorkload();
+        const std::string left = [] {
+            const auto bytes = morphogen::allocatableBytes();
+            return bytes ? morphogen::formatBytes(*bytes) : std::string("unknown");
+        }();
+        std::fprintf(stderr,
+                     "morphogen: error: out of memory%s (this process may still allocate %s: "
+                     "see ulimit -v and the memory available); use a smaller size\n",
+                     what.empty() ? "" : (" running " + what).c_str(), left.c_str());
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "morphogen: error: %s\n", e.what());
         return 1;

@@ -17,6 +17,7 @@
 #include "cli/render_output.hpp"
 #include "core/base/enum_names.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/names.hpp"
 #include "core/io/image_io.hpp"
 #include "core/io/output_files.hpp"
 #include "core/output/colormap.hpp"
@@ -106,8 +107,17 @@ MapPlan planMap(const MapFlags& f) {
         applySteps(s, int(integerFlag("--steps", f.steps, 0, kMaxSteps)), "--steps");
     if (!f.seed.empty())
         s.seed = std::uint64_t(integerFlag("--seed", f.seed, 0, kMaxSeed));
-    for (const std::string& p : f.params)
+    for (const std::string& p : f.params) {
+        // The axes set these per cell: a fixed value would have no effect.
+        const std::string name = p.substr(0, p.find('='));
+        for (const SweepAxis* axis : {&plan.x, &plan.y})
+            if (sameSpelling(name, axis->param))
+                throw InputError("--param " + p + ": " + axis->param + " is swept by --" +
+                                 (axis == &plan.x ? "x" : "y") +
+                                 ", so a fixed value would have no effect; fix another "
+                                 "parameter, or sweep a different one");
         applyParamOverride(s, p);
+    }
     if (!f.tensor.empty()) {
         s.diffusion.type = DiffusionType::Generalized;
         for (const ChemicalSpec& c : model.chemicals())
@@ -121,7 +131,13 @@ MapPlan planMap(const MapFlags& f) {
     s.paramMaps[plan.x.param] = {ParamMapSpec::Field::LinearX, plan.x.min, plan.x.max};
     s.paramMaps[plan.y.param] = {ParamMapSpec::Field::LinearY, plan.y.min, plan.y.max};
     validateSession(s, "map");
-    imageFormatForPath(f.out);
+    // A map is a labelled plot (colours, axes, title): an image format. EXR
+    // means raw chemical values everywhere else (render --out x.exr), which a
+    // plot is not, so it is refused rather than given another meaning here.
+    if (imageFormatForPath(f.out) == ImageFormat::Exr)
+        throw InputError("--out " + f.out +
+                         ": a map is a labelled colour plot, written as .png or .tif (.exr "
+                         "holds raw chemical values, as render writes them)");
     checkWritable(f.out);
     checkStability(s, false);
     return plan;

@@ -51,7 +51,7 @@ void meshInfo(const MeshInfoFlags& f) {
         writeFileAtomically(f.json, j.dump(2) + "\n");
     }
     // The report is out (and in --json, with "usable": false); the refusal is the exit code.
-    requireManifold(report, f.file);
+    requireUsableForTiles(report, f.file);
 }
 
 struct MeshGenFlags {

@@ -2,6 +2,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -77,8 +80,48 @@ nlohmann::json parseJsonText(std::string_view text, const std::string& source) {
         throw InputError(source + ": arrays and objects nested more than " +
                          std::to_string(kMaxJsonDepth) + " levels deep (at " + position(text, at) +
                          "); accepted are up to " + std::to_string(kMaxJsonDepth) + " levels");
+    // nlohmann keeps the last of two equal keys in an object; a file that
+    // says a thing twice is refused instead, naming the key and where it is.
+    struct Level {
+        bool object;
+        std::string path;
+        std::set<std::string> keys;
+    };
+    std::vector<Level> levels;
+    std::string key; // the key whose value comes next
+    const auto childPath = [&]() {
+        if (levels.empty())
+            return std::string();
+        const Level& parent = levels.back();
+        return parent.object ? (parent.path.empty() ? key : parent.path + "." + key)
+                             : parent.path + "[]";
+    };
+    const nlohmann::json::parser_callback_t checkKeys =
+        [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+            using Event = nlohmann::json::parse_event_t;
+            switch (event) {
+            case Event::object_start:
+            case Event::array_start:
+                levels.push_back({event == Event::object_start, childPath(), {}});
+                break;
+            case Event::object_end:
+            case Event::array_end:
+                if (!levels.empty())
+                    levels.pop_back();
+                break;
+            case Event::key:
+                key = parsed.get<std::string>();
+                if (!levels.empty() && !levels.back().keys.insert(key).second)
+                    throw InputError(source + ": key '" + childPath() +
+                                     "' appears twice in one object; give each key once");
+                break;
+            case Event::value:
+                break;
+            }
+            return true;
+        };
     try {
-        return nlohmann::json::parse(text.begin(), text.end());
+        return nlohmann::json::parse(text.begin(), text.end(), checkKeys);
     } catch (const nlohmann::json::parse_error& e) {
         throw InputError(source + ": not valid JSON: " + oneLine(withoutPrefix(e.what())));
     } catch (const nlohmann::json::out_of_range& e) {

@@ -87,6 +87,12 @@ std::string oneLine(std::string text) {
     return text;
 }
 
+// Reads the file just written back whole (defined below, beside the readers):
+// OpenImageIO's PNG writer does not report a short write (a full disk, the
+// file-size limit), so a truncated image would otherwise replace a good one.
+void verifyWrittenImage(const std::string& written, const OIIO::ImageSpec& spec,
+                        const std::string& shown);
+
 // Writes the image through writeFileAtomically (a temporary next to `path`
 // with the real extension, which OIIO picks the format by, renamed into
 // place), so a failed or interrupted write leaves no half-written image.
@@ -101,6 +107,7 @@ void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec,
         // temporary is removed.
         if (!(out->open(tmp, spec) && pixels(*out) && out->close()))
             throw InputError(shown + ": writing the image failed: " + oneLine(out->geterror()));
+        verifyWrittenImage(tmp, spec, shown);
     });
 }
 
@@ -260,6 +267,28 @@ private:
 
 void checkImageHeader(const std::string& path, const OIIO::ImageSpec& spec) {
     checkImageSize(path, spec.width, spec.height, std::max(1, spec.depth), spec.nchannels);
+}
+
+void verifyWrittenImage(const std::string& written, const OIIO::ImageSpec& spec,
+                        const std::string& shown) {
+    std::error_code ec;
+    const std::string incomplete = shown +
+                                   ": writing the image failed: the file on disk is incomplete (" +
+                                   std::to_string(fs::file_size(written, ec)) +
+                                   " bytes; is the disk full, or the file over a size limit?)";
+    QuietStderr quiet;
+    auto input = OIIO::ImageInput::open(written);
+    if (!input)
+        throw InputError(incomplete);
+    const OIIO::ImageSpec& read = input->spec();
+    if (read.width != spec.width || read.height != spec.height || read.nchannels != spec.nchannels)
+        throw InputError(incomplete);
+    // Row by row: the check holds one row, whatever the image's size.
+    std::vector<float> row(std::size_t(read.width) * std::size_t(read.nchannels));
+    for (int y = 0; y < read.height; ++y)
+        if (!input->read_scanline(y, 0, OIIO::TypeDesc::FLOAT, row.data()))
+            throw InputError(incomplete);
+    input->close();
 }
 
 } // namespace

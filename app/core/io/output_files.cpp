@@ -7,9 +7,19 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <mutex>
+#include <optional>
+#include <regex>
+#include <set>
+#include <sstream>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
 #include <unistd.h>
+
+#include <nlohmann/json.hpp>
 
 #include "core/base/errors.hpp"
 
@@ -143,6 +153,144 @@ std::string errnoText() {
     return errno != 0 ? std::string(": ") + std::strerror(errno) : std::string();
 }
 
+// A process id that no longer runs (not ours, and kill(0) says no such process).
+bool processGone(long pid) {
+    if (pid <= 0 || pid == long(::getpid()))
+        return false;
+    return ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
+}
+
+// The process id in a name this file's writers made, else 0: temporaries
+// ".~stem.PID-N.ext", staged series ".~stemstaging.PID-N", commit journals
+// ".~commit.PID-N.journal" and checkWritable's probes ".~probe.PID".
+long writerPidOf(const std::string& name) {
+    static const std::regex temporary(R"(^\.~.*\.([0-9]{1,9})-[0-9]+(\.[^.]*)?$)");
+    static const std::regex probe(R"(^\.~probe\.([0-9]{1,9})$)");
+    std::smatch m;
+    if (std::regex_match(name, m, temporary) || std::regex_match(name, m, probe))
+        return std::stol(m[1].str());
+    return 0;
+}
+
+bool isJournalName(const std::string& name) {
+    return name.rfind(".~commit.", 0) == 0 && fs::path(name).extension() == ".journal";
+}
+
+std::string folderOf(const std::string& path) {
+    return fs::absolute(path).parent_path().lexically_normal().string();
+}
+
+// An exclusive flock on a folder, for as long as it lives (best effort: a
+// file system without flock just goes unlocked).
+class FolderLock {
+public:
+    explicit FolderLock(const std::string& folder) {
+        m_fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (m_fd >= 0)
+            while (::flock(m_fd, LOCK_EX) != 0 && errno == EINTR) {
+            }
+    }
+    ~FolderLock() {
+        if (m_fd >= 0)
+            ::close(m_fd); // releases the lock
+    }
+    FolderLock(const FolderLock&) = delete;
+    FolderLock& operator=(const FolderLock&) = delete;
+
+private:
+    int m_fd = -1;
+};
+
+// Locks in one order (sorted paths) whatever the caller's, so two commits
+// over the same folders cannot wait on each other.
+std::vector<std::unique_ptr<FolderLock>> lockFolders(std::vector<std::string> folders) {
+    std::sort(folders.begin(), folders.end());
+    folders.erase(std::unique(folders.begin(), folders.end()), folders.end());
+    std::vector<std::unique_ptr<FolderLock>> locks;
+    for (const std::string& f : folders)
+        locks.push_back(std::make_unique<FolderLock>(f));
+    return locks;
+}
+
+// A journal: the set's files (temporary -> final path) and every copy of the
+// journal (one in each folder the set writes to, so the next run to any of
+// them finds it). Absolute paths.
+struct Journal {
+    std::vector<std::pair<std::string, std::string>> files;
+    std::vector<std::string> copies;
+};
+
+std::string journalText(const Journal& j) {
+    nlohmann::json files = nlohmann::json::array();
+    for (const auto& [temporary, path] : j.files)
+        files.push_back({temporary, path});
+    return nlohmann::json{{"morphogen_commit", 1}, {"files", files}, {"journals", j.copies}}
+               .dump() +
+           "\n";
+}
+
+// A journal as written, or nothing when it is unreadable or incomplete (its
+// run was killed while writing it: no rename had begun).
+std::optional<Journal> readJournal(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("files") || !j.contains("journals"))
+        return std::nullopt;
+    Journal journal;
+    try {
+        for (const nlohmann::json& f : j.at("files"))
+            journal.files.emplace_back(f.at(0).get<std::string>(), f.at(1).get<std::string>());
+        for (const nlohmann::json& c : j.at("journals"))
+            journal.copies.push_back(c.get<std::string>());
+    } catch (const nlohmann::json::exception&) {
+        return std::nullopt;
+    }
+    return journal;
+}
+
+// Finishes a killed run's commit: every temporary still there is moved into
+// place (all were complete before the journal was written), then the
+// journal's copies go.
+void finishJournal(const fs::path& path) {
+    const std::optional<Journal> journal = readJournal(path);
+    std::error_code ec;
+    if (!journal) {
+        fs::remove(path, ec);
+        return;
+    }
+    std::vector<std::string> folders;
+    for (const auto& [temporary, final] : journal->files)
+        folders.push_back(folderOf(final));
+    const auto locks = lockFolders(folders);
+    if (!fs::exists(path, ec))
+        return; // another run finished it meanwhile
+    for (const auto& [temporary, final] : journal->files)
+        if (fs::is_regular_file(temporary, ec))
+            fs::rename(temporary, final, ec);
+    for (const std::string& copy : journal->copies)
+        fs::remove(copy, ec);
+    fs::remove(path, ec);
+}
+
+std::mutex g_recoveredMutex;
+std::set<std::string>& recoveredFolders() {
+    static std::set<std::string> folders;
+    return folders;
+}
+
+// recoverInterruptedOutput, once per folder per process.
+void recoverOnce(const std::string& folder) {
+    const std::string key = fs::absolute(folder).lexically_normal().string();
+    {
+        const std::lock_guard<std::mutex> lock(g_recoveredMutex);
+        if (!recoveredFolders().insert(key).second)
+            return;
+    }
+    recoverInterruptedOutput(key);
+}
+
 } // namespace
 
 std::string finalPathOf(const std::string& path) {
@@ -181,6 +329,7 @@ std::string OutputFiles::stage(const std::string& path) {
         if (fs::absolute(e.path).lexically_normal() == key)
             throw InputError(path + ": this run would write it twice (as two of its outputs); "
                                     "give each output its own path");
+    recoverOnce(folderOf(path));
     Entry e{path, temporaryPathFor(path), -1};
     e.slot = claimSlot(e.temporary, -1);
     addStaged(e.temporary, path);
@@ -188,7 +337,7 @@ std::string OutputFiles::stage(const std::string& path) {
     return e.temporary;
 }
 
-void OutputFiles::commit() {
+void OutputFiles::commit(const std::function<void(int renamed)>& afterRename) {
     if (m_done)
         return;
     for (const Entry& e : m_entries) {
@@ -198,19 +347,63 @@ void OutputFiles::commit() {
         if (fs::is_directory(e.path, ec))
             throw InputError(e.path + ": cannot write here: it is a folder");
     }
+    std::vector<std::string> folders;
+    for (const Entry& e : m_entries)
+        folders.push_back(folderOf(e.path));
+    const auto locks = lockFolders(folders);
+
+    // A set of several files is journalled first: a kill between two renames
+    // is finished by the next run (recoverInterruptedOutput).
+    Journal journal;
+    if (m_entries.size() > 1) {
+        for (const Entry& e : m_entries)
+            journal.files.emplace_back(fs::absolute(e.temporary).lexically_normal().string(),
+                                       fs::absolute(e.path).lexically_normal().string());
+        std::sort(folders.begin(), folders.end());
+        folders.erase(std::unique(folders.begin(), folders.end()), folders.end());
+        const std::string name = ".~commit." + std::to_string(::getpid()) + "-" +
+                                 std::to_string(g_counter.fetch_add(1)) + ".journal";
+        for (const std::string& f : folders)
+            journal.copies.push_back((fs::path(f) / name).string());
+    }
+    const auto removeJournals = [&] {
+        std::error_code ec;
+        for (const std::string& copy : journal.copies)
+            fs::remove(copy, ec);
+    };
+    const std::string text = journalText(journal);
+    for (const std::string& copy : journal.copies) {
+        std::ofstream out(copy, std::ios::binary);
+        out << text;
+        out.close();
+        std::error_code ec;
+        if (!out || fs::file_size(copy, ec) != text.size()) {
+            removeJournals();
+            throw InputError(finalPathOf(m_entries.front().path) +
+                             ": cannot record the files to replace in " + copy +
+                             " (is the disk full?); nothing was replaced");
+        }
+    }
+
     std::string replaced;
+    int renamed = 0;
     for (Entry& e : m_entries) {
         std::error_code ec;
         fs::rename(e.temporary, e.path, ec);
-        if (ec)
+        if (ec) {
+            removeJournals();
             throw InputError(
                 e.path + ": cannot move the file into place: " + ec.message() +
                 (replaced.empty() ? "; nothing was replaced" : "; already replaced: " + replaced));
+        }
         releaseSlot(e.slot);
         removeStaged(e.temporary);
         e.temporary.clear();
         replaced += (replaced.empty() ? "" : ", ") + e.path;
+        if (afterRename)
+            afterRename(++renamed);
     }
+    removeJournals();
     m_done = true;
 }
 
@@ -244,12 +437,50 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
         out.close();
         if (!out)
             throw InputError(shown + ": writing the file failed" + errnoText());
+        checkWrittenSize(temporary, text.size(), shown);
     });
+}
+
+void checkWrittenSize(const std::string& written, std::uintmax_t bytes, const std::string& shown) {
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(written, ec);
+    if (ec)
+        throw InputError(shown + ": writing the file failed: " + ec.message());
+    if (size != bytes)
+        throw InputError(shown + ": writing the file failed: " + std::to_string(size) + " of " +
+                         std::to_string(bytes) +
+                         " bytes reached the disk (is it full, or the file over a size limit?)");
+}
+
+void recoverInterruptedOutput(const std::string& folder) {
+    try {
+        std::error_code ec;
+        std::vector<fs::path> journals;
+        for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+            const std::string name = e.path().filename().string();
+            if (isJournalName(name) && processGone(writerPidOf(name)))
+                journals.push_back(e.path());
+        }
+        for (const fs::path& j : journals)
+            finishJournal(j);
+        const FolderLock lock(folder);
+        std::vector<fs::path> stale;
+        for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+            const std::string name = e.path().filename().string();
+            if (!isJournalName(name) && processGone(writerPidOf(name)))
+                stale.push_back(e.path());
+        }
+        for (const fs::path& p : stale)
+            fs::remove_all(p, ec);
+    } catch (const std::exception&) {
+        // Best effort: what cannot be read or removed stays as it was.
+    }
 }
 
 StagedSequence::StagedSequence(const std::string& folder, const std::string& stem,
                                const std::string& ext)
     : m_folder(folder), m_stem(stem), m_ext(ext) {
+    recoverOnce(folder);
     m_staging = (fs::path(folder) / (".~" + stem + "staging." + std::to_string(::getpid()) + "-" +
                                      std::to_string(g_counter.fetch_add(1))))
                     .string();

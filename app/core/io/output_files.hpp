@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -41,7 +42,14 @@ public:
     // path may be a folder, so the likely failures change nothing; a rename
     // that still fails throws naming the files already replaced, and the
     // remaining temporaries are removed.
-    void commit();
+    //
+    // The set is replaced as one: the folders it writes to are locked
+    // (flock) while it renames, so two runs to the same paths cannot
+    // interleave their files, and a set of several files is listed in a
+    // journal first, so a run killed between two renames has its commit
+    // finished by the next run to the folder (recoverInterruptedOutput).
+    // `afterRename` (tests) is called after each rename with the count so far.
+    void commit(const std::function<void(int renamed)>& afterRename = {});
 
     // The final paths, in order.
     std::vector<std::string> paths() const;
@@ -99,6 +107,19 @@ private:
     int m_slot = -1;
     bool m_done = false;
 };
+
+// What a killed run left in `folder` (its process no longer runs): a commit
+// it had begun is finished from its journal (every file in it was complete
+// before the first rename), then its temporaries and staged series are
+// removed. Never throws; files it cannot touch stay. OutputFiles::stage and
+// StagedSequence call it once per folder per process, so the next run to a
+// folder cleans up after a killed one.
+void recoverInterruptedOutput(const std::string& folder);
+
+// Throws InputError naming `shown` unless the file `written` holds exactly
+// `bytes` bytes: a writer that does not report short writes (a full disk,
+// the file-size limit) is caught before its file replaces a good one.
+void checkWrittenSize(const std::string& written, std::uintmax_t bytes, const std::string& shown);
 
 // Removes every live temporary and staged series. Async-signal-safe (unlink
 // and rmdir only): for a handler of SIGINT, SIGTERM or SIGHUP that then ends

@@ -238,4 +238,22 @@ void requireManifold(const MeshReport& report, const std::string& source) {
                      "vertex on one fan (a mesh editor's \"select non-manifold\" finds them)");
 }
 
+std::string whyNotUsableForTiles(const MeshReport& report) {
+    if (!report.manifold())
+        return "not a manifold surface";
+    if (!report.hasArea())
+        return "the surface has no area: " +
+               std::string(report.triangles == 0 ? "it has no triangles"
+                                                 : "every triangle is zero-area (its corners on "
+                                                   "a line or a point)");
+    return "";
+}
+
+void requireUsableForTiles(const MeshReport& report, const std::string& source) {
+    requireManifold(report, source);
+    if (!report.hasArea())
+        throw InputError(source + ": " + whyNotUsableForTiles(report) +
+                         "; nothing to grow a pattern on");
+}
+
 } // namespace morphogen

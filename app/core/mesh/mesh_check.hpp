@@ -60,6 +60,11 @@ struct MeshReport {
     MeshDefect nearSeamVertices;
 
     bool manifold() const { return nonManifoldEdges.count == 0 && nonManifoldVertices.count == 0; }
+    // Some triangle has an area: a mesh of zero-area triangles alone (or of
+    // none) has no surface to grow a pattern on.
+    bool hasArea() const { return triangles > zeroAreaTriangles.count && area > 0; }
+    // What surface tiles need, as mesh-info reports it and render checks it.
+    bool usableForTiles() const { return manifold() && hasArea(); }
 };
 
 // Analyses a mesh whose indices are in range (any loaded mesh). Never throws for
@@ -71,5 +76,12 @@ MeshReport checkMesh(const TriangleMesh& mesh);
 // the first location otherwise. Open boundaries, several components, any genus,
 // non-orientable components and zero-area triangles are accepted.
 void requireManifold(const MeshReport& report, const std::string& source);
+
+// requireManifold, and a surface with area (report.hasArea()): the one check
+// of whether surface tiles can be built, shared by mesh-info and render.
+void requireUsableForTiles(const MeshReport& report, const std::string& source);
+
+// Why surface tiles cannot be built on the mesh, one line; "" when they can.
+std::string whyNotUsableForTiles(const MeshReport& report);
 
 } // namespace morphogen

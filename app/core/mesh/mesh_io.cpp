@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/io/output_files.hpp"
 #include "core/mesh/mesh_formats.hpp"
 
 namespace morphogen {
@@ -122,26 +123,9 @@ void writeObj(const TriangleMesh& mesh, const std::string& path,
 }
 
 void writeFileAtomically(const std::string& path, const std::string& bytes) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        if (!out)
-            throw InputError(path + ": cannot be written (does the folder exist and is it "
-                                    "writable?)");
-        out.write(bytes.data(), std::streamsize(bytes.size()));
-        if (!out) {
-            out.close();
-            fs::remove(tmp);
-            throw InputError(path + ": writing failed");
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        const std::string why = ec.message();
-        fs::remove(tmp, ec);
-        throw InputError(path + ": cannot move the file into place: " + why);
-    }
+    // Through the output-safety writer: a staged temporary is written in
+    // place, messages name the final path, and a short write is caught.
+    writeTextAtomically(path, bytes);
 }
 
 } // namespace morphogen

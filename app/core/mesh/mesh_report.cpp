@@ -122,8 +122,8 @@ std::string meshReportText(const LoadedMesh& loaded, const MeshReport& r) {
             problems += format("  %s: %zu, the first at ", p.name, p.defect->count) +
                         point(p.defect->first) + " (" + p.consequence + ")\n";
     out += problems.empty() ? "problems: none\n" : "problems:\n" + problems;
-    out += r.manifold() ? "usable for surface tiles: yes\n"
-                        : "usable for surface tiles: no (not a manifold surface)\n";
+    out += r.usableForTiles() ? "usable for surface tiles: yes\n"
+                              : "usable for surface tiles: no (" + whyNotUsableForTiles(r) + ")\n";
     return out;
 }
 
@@ -171,7 +171,7 @@ nlohmann::json meshReportJson(const LoadedMesh& loaded, const MeshReport& r) {
         {"boundary", {{"edges", r.boundaryEdges}, {"loops", r.boundaryLoops}}},
         {"components", components},
         {"problems", problems},
-        {"usable", r.manifold()},
+        {"usable", r.usableForTiles()},
     };
 }
 

@@ -14,7 +14,7 @@ namespace morphogen {
 // verdict of requireManifold). Lines end in '\n'.
 std::string meshReportText(const LoadedMesh& loaded, const MeshReport& report);
 
-// The same as JSON ("usable" is report.manifold()).
+// The same as JSON ("usable" is report.usableForTiles()).
 nlohmann::json meshReportJson(const LoadedMesh& loaded, const MeshReport& report);
 
 } // namespace morphogen

@@ -118,6 +118,12 @@ std::vector<Stage> stagesFromJson(const json& j, const std::string& source,
             rule.max = float(f.number("max", 1e30, -1e30, 1e30));
             if (rule.min > rule.max)
                 f.failField("min", "is above max");
+            // The rule picks cells from the previous stage's result; before
+            // the first stage there is none, so it would freeze nothing.
+            if (i == 0)
+                reader.failField("freeze", "cannot be on the first stage: a freeze rule picks "
+                                           "cells from the previous stage's result (put it on "
+                                           "the stage after the one whose result it reads)");
             stage.freeze = rule;
         }
         frozen = frozen || stage.freeze.has_value();

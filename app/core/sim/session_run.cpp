@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/base/errors.hpp"
+#include "core/base/memory_budget.hpp"
 #include "core/base/names.hpp"
 #include "core/domain/atlas.hpp"
 #include "core/domain/atlas_weights.hpp"
@@ -22,11 +23,41 @@
 
 namespace morphogen {
 
+namespace {
+
+// The least a run needs: at its largest segment, the state and the next
+// state a step writes (every backend holds both; the GPU's textures and the
+// CPU's buffers add more, measured by `bench`'s memory rows). Refused up
+// front when even that cannot be had.
+void requireRunMemory(const std::vector<Segment>& segments) {
+    std::uint64_t most = 0;
+    const Session* largest = nullptr;
+    for (const Segment& s : segments) {
+        const std::uint64_t bytes =
+            std::uint64_t(s.session.width) * std::uint64_t(s.session.height) *
+            s.session.reactionModel().chemicals().size() * sizeof(float) * 2;
+        if (bytes >= most) {
+            most = bytes;
+            largest = &s.session;
+        }
+    }
+    if (!largest)
+        return;
+    const std::string what =
+        "a " + std::to_string(largest->width) + "x" + std::to_string(largest->height) +
+        " grid of " + std::to_string(largest->reactionModel().chemicals().size()) + " chemicals";
+    setCurrentWorkload(what + " (" + formatBytes(most) + " for two copies of its state)");
+    requireMemory(most, "the run (" + what + ")");
+}
+
+} // namespace
+
 SessionRun::SessionRun(const Session& session, SimulatorFactory makeSimulator, int checkEvery)
     : m_session(session), m_make(std::move(makeSimulator)), m_checkEvery(std::max(0, checkEvery)),
       m_segments(segmentsOf(session)), m_stateModel(&session.reactionModel()) {
     for (const Segment& s : m_segments)
         m_totalSteps += s.session.steps; // segmentsOf keeps the total within an int
+    requireRunMemory(m_segments);
     enterSegment(0);
     applyDueEdits();
 }
@@ -92,6 +123,39 @@ int SessionRun::segmentRemaining() const {
     return m_finished ? 0 : m_segments[m_index].session.steps - m_stepsRun[m_index];
 }
 
+namespace {
+
+// Whether `part`'s time step is within what its diffusion allows (semi-implicit
+// steps are stable at any dt; explicit ones up to 0.8 of the spectral limit,
+// the margin suggestDt keeps for the reaction's own stiffness).
+bool timeStepWithinLimit(const Session& part) {
+    if (part.integrator == Integrator::SemiImplicit)
+        return true;
+    const ExplicitStability s = explicitStability(compileDiffusion(part), part.domain(), part.dt);
+    return s.maxStableDt && part.dt <= 0.8 * *s.maxStableDt;
+}
+
+// The strokes that put chemicals in (add, set, randomise) among `applied`.
+struct StrokeTally {
+    int count = 0;
+    long long lastStep = -1;
+    float largest = 0;
+};
+
+StrokeTally strokesApplied(const std::vector<LiveEdit>& applied) {
+    StrokeTally t;
+    for (const LiveEdit& e : applied)
+        if (e.stroke && !e.stroke->chemical.empty() && e.stroke->mode != BrushMode::Remove &&
+            e.stroke->mode != BrushMode::Paint) {
+            ++t.count;
+            t.lastStep = e.step;
+            t.largest = std::max(t.largest, std::abs(e.stroke->value));
+        }
+    return t;
+}
+
+} // namespace
+
 void SessionRun::checkBlowUp(int before) const {
     const Session& part = segmentSession();
     auto problem = m_simulator->insaneValue(part.reactionModel());
@@ -104,7 +168,27 @@ void SessionRun::checkBlowUp(int before) const {
     if (m_segments.size() > 1)
         os << " of " << (m_session.stages.empty() ? "level " : "stage ") << m_index + 1;
     os << " (" << *problem << ", backend " << m_simulator->backendName() << ", dt " << part.dt
-       << "); try a smaller time step such as --dt " << dt;
+       << ")";
+    // Strokes pile chemicals up where they overlap; past the model's range
+    // its reaction can run away at any time step. Say so rather than blame dt
+    // when dt is within its limit.
+    const StrokeTally strokes = strokesApplied(m_applied);
+    const bool dtWithin = timeStepWithinLimit(part);
+    if (strokes.count > 0 && dtWithin) {
+        os << "; the time step is within its stability limit, so it is not the cause: "
+           << strokes.count << (strokes.count == 1 ? " stroke" : " strokes")
+           << " put chemicals in before it (the last at step " << strokes.lastStep
+           << ", amounts up to " << strokes.largest
+           << "), and where strokes pile up the values leave the range the reaction stays "
+              "bounded in: paint fewer or weaker strokes (a smaller value), or 'set' a "
+              "value instead of adding to it";
+    } else {
+        os << "; try a smaller time step such as --dt " << dt;
+        if (strokes.count > 0)
+            os << " (" << strokes.count << (strokes.count == 1 ? " stroke" : " strokes")
+               << " also put chemicals in before it: where strokes pile up, fewer or weaker "
+                  "ones help too)";
+    }
     throw BlowUpError(os.str(), done, dt);
 }
 

@@ -108,7 +108,7 @@ SurfaceTiles buildSurfaceTiles(const TriangleMesh& full, const TileOptions& opti
     };
     if (full.triangles.empty())
         throw InputError(source + ": the mesh has no triangles to lay tiles on");
-    requireManifold(checkMesh(full), source);
+    requireUsableForTiles(checkMesh(full), source);
 
     const int budget = options.tiles > 0 ? options.tiles : automaticTileBudget(options.tileSize);
     report("simplify", 0);
