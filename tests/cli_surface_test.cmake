@@ -163,9 +163,34 @@ run(2 "unknown" render --mesh sample:cube --preset turk_large_spots --out bad.pn
 run(2 "no such mesh file" render --mesh missing.obj --preset turk_large_spots --out bad.png)
 file(WRITE "${WORK}/empty.obj" "")
 run(2 "the file is empty" render --mesh empty.obj --preset turk_large_spots --out bad.png)
-# Three triangles on one edge: not a surface tiles can cover.
+# Three triangles on one edge: not a surface tiles can cover as it is (--no-repair) ...
 file(WRITE "${WORK}/fin.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n")
-run(2 "non-manifold" render --mesh fin.obj --preset turk_large_spots --out bad.png)
+run(2 "non-manifold" render --mesh fin.obj --preset turk_large_spots --no-repair --out bad.png)
+# ... and a torus as a scan leaves it, every tenth face stored twice: repaired and grown.
+run(0 "" mesh-gen torus --detail 12 --out scan_torus.obj)
+file(STRINGS "${WORK}/scan_torus.obj" torus_faces REGEX "^f ")
+set(doubled "")
+set(k 0)
+foreach(face IN LISTS torus_faces)
+  math(EXPR k "${k} + 1")
+  math(EXPR tenth "${k} % 10")
+  if(tenth EQUAL 0)
+    string(APPEND doubled "${face}\n")
+  endif()
+endforeach()
+file(APPEND "${WORK}/scan_torus.obj" "${doubled}")
+run(0 "repaired (" render --mesh scan_torus.obj --preset turk_large_spots ${small} --out scan_torus.png)
+string(FIND "${last_stderr}" "duplicate triangles removed" at)
+if(at EQUAL -1 OR NOT EXISTS "${WORK}/scan_torus.png")
+  message(SEND_ERROR "render of a torus with duplicated faces: want it repaired and rendered: ${last_stderr}")
+endif()
+# A preset's drops are placed on its own model (the blob): on another model they
+# would paint nothing, so the run is refused, naming the drop.
+run(2 "misses the surface" render --preset surface_drops_blob --mesh sample:torus ${small} --out missed.png)
+string(FIND "${last_stderr}" "edit 1 (step 0), a stroke at (" at)
+if(at EQUAL -1)
+  message(SEND_ERROR "surface_drops_blob on a torus: want the first drop named: ${last_stderr}")
+endif()
 # Generalized diffusion has no surface form yet: refused, naming the operator.
 run(2 "cannot run on an atlas domain" render --mesh sample:sphere --preset gs_generalized_e ${small} --out bad.png)
 run(2 "an image field cannot vary a parameter over a mesh" render --mesh sample:sphere

@@ -351,10 +351,26 @@ TEST(MeshIo, BrokenGltfContentIsRefusedWithTheReason) {
     expectRefused(path, "index 2 is 99, but there are 3 vertices");
 }
 
-TEST(MeshIo, NonManifoldFileLoadsButIsRefusedForTiles) {
+TEST(MeshIo, NonManifoldFileIsRepairedOrWithoutRepairRefusedForTiles) {
     const std::string path = write("fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
                                               "f 1 2 3\nf 2 1 4\nf 1 2 5\n");
-    const LoadedMesh m = loadMesh(path);
+    {
+        // Loaded as surface tiles load it: the fin's sheets cut apart.
+        const LoadedMesh repaired = loadMesh(path);
+        EXPECT_EQ(repaired.repair.nonManifoldEdges, 1u);
+        EXPECT_GE(repaired.repair.splitVertices, 2u);
+        const MeshReport r = checkMesh(repaired.mesh);
+        EXPECT_TRUE(r.usableForTiles());
+        const std::string text = meshReportText(repaired, r);
+        EXPECT_NE(text.find("found: 1 non-manifold edge (more than two triangles)"),
+                  std::string::npos)
+            << text;
+        EXPECT_NE(text.find("repaired: "), std::string::npos) << text;
+        EXPECT_EQ(meshReportJson(repaired, r)["usable"], true);
+    }
+    RepairOptions off;
+    off.enabled = false;
+    const LoadedMesh m = loadMesh(path, off);
     const MeshReport r = checkMesh(m.mesh);
     EXPECT_EQ(r.nonManifoldEdges.count, 1u);
     try {

@@ -9,10 +9,12 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/flag_values.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
 #include "core/mesh/mesh_check.hpp"
 #include "core/mesh/mesh_io.hpp"
+#include "core/mesh/mesh_repair.hpp"
 #include "core/mesh/mesh_report.hpp"
 #include "core/mesh/mesh_samples.hpp"
 
@@ -29,13 +31,20 @@ double secondsSince(Clock::time_point start) {
 struct MeshInfoFlags {
     std::string file;
     std::string json;
+    bool noRepair = false;
+    std::string mergeDistance;
 };
 
 void meshInfo(const MeshInfoFlags& f) {
     if (!f.json.empty())
         checkWritable(f.json);
     const Clock::time_point start = Clock::now();
-    const LoadedMesh loaded = loadMesh(f.file);
+    RepairOptions repair;
+    repair.enabled = !f.noRepair;
+    if (!f.mergeDistance.empty())
+        repair.mergeDistance =
+            numberFlag("--merge-distance", f.mergeDistance, 0, kMaxMergeDistance);
+    const LoadedMesh loaded = loadMesh(f.file, repair);
     const double loadSeconds = secondsSince(start);
     const Clock::time_point checkStart = Clock::now();
     const MeshReport report = checkMesh(loaded.mesh);
@@ -104,11 +113,17 @@ void addMeshCommands(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "mesh-info",
         "Load a triangle mesh (.obj, .gltf, .glb) as surface tiles will: weld equal positions, "
-        "then report its size, components with their genus and boundary loops, and problems. "
-        "Exit 2 if it cannot be used (unreadable, no triangles, NaN, indices out of range, "
-        "not manifold)");
+        "repair it (merge seams, remove duplicate triangles and specks, cut fins and bowtie "
+        "vertices apart), then report what was repaired, its size, components with their genus "
+        "and boundary loops, and what problems remain. Exit 2 if it cannot be used (unreadable, "
+        "no triangles, NaN, indices out of range, no area; with --no-repair also not "
+        "manifold)");
     cmd->add_option("file", info->file, "the mesh file")->required();
     cmd->add_option("--json", info->json, "also write the report as JSON to this file");
+    cmd->add_flag("--no-repair", info->noRepair, "report the mesh as it is, without the repair");
+    cmd->add_option("--merge-distance", info->mergeDistance,
+                    "merge open-boundary vertices closer than this fraction of the bounding "
+                    "box's diagonal (0..0.01, default 1e-5; 0: off)");
     cmd->callback([info] { meshInfo(*info); });
 
     auto gen = std::make_shared<MeshGenFlags>();

@@ -7,6 +7,7 @@
 #include "cli/flag_values.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/limits.hpp"
+#include "core/mesh/mesh_repair.hpp"
 
 namespace morphogen::cli {
 
@@ -92,6 +93,14 @@ void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
                  "the metric-corrected diffusion without its 9-point cross term: the 5-point "
                  "stencil, anisotropic on sheared tiles")
         ->group(group);
+    cmd.add_flag("--no-repair", f.noRepair,
+                 "tile the mesh as it is: no merging of seams, no removal of duplicate triangles "
+                 "and specks, fins and bowtie vertices refused instead of cut apart")
+        ->group(group);
+    cmd.add_option("--merge-distance", f.mergeDistance,
+                   "merge open-boundary vertices closer than this fraction of the bounding box's "
+                   "diagonal (0..0.01, default 1e-5; 0: off), as Merge by Distance does")
+        ->group(group);
     cmd.add_option("--curvature-scale", f.curvatureScale,
                    "shrink features where the mean curvature is high (strength, 0 = off; "
                    "size factor 1 / (1 + S |H| / median |H|))")
@@ -115,8 +124,8 @@ void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
 
 bool anySurfaceFlag(const SurfaceFlags& f) {
     return !f.mesh.empty() || !f.tileSize.empty() || !f.tiles.empty() || f.noMetricCorrection ||
-           f.noCrossTerm || !f.curvatureScale.empty() || !f.direction.empty() || !f.view.empty() ||
-           !f.resolution.empty() || !f.turntable.empty();
+           f.noCrossTerm || f.noRepair || !f.mergeDistance.empty() || !f.curvatureScale.empty() ||
+           !f.direction.empty() || !f.view.empty() || !f.resolution.empty() || !f.turntable.empty();
 }
 
 void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
@@ -130,11 +139,11 @@ void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
     if (!anySurfaceFlag(f))
         return;
     if (!s.surface.active())
-        throw InputError(
-            "the surface flags (--tile-size, --tiles, --no-metric-correction, "
-            "--no-cross-term, --curvature-scale, --direction, --view, --resolution, --turntable) "
-            "need a mesh: "
-            "give --mesh FILE");
+        throw InputError("the surface flags (--tile-size, --tiles, --no-metric-correction, "
+                         "--no-cross-term, --no-repair, --merge-distance, --curvature-scale, "
+                         "--direction, --view, --resolution, --turntable) "
+                         "need a mesh: "
+                         "give --mesh FILE");
     SurfaceSpec& spec = s.surface;
     if (!f.tileSize.empty())
         spec.tileSize =
@@ -145,6 +154,10 @@ void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
         spec.metricCorrection = false;
     if (f.noCrossTerm)
         spec.crossTerm = false;
+    if (f.noRepair)
+        spec.repair = false;
+    if (!f.mergeDistance.empty())
+        spec.mergeDistance = numberFlag("--merge-distance", f.mergeDistance, 0, kMaxMergeDistance);
     if (!f.curvatureScale.empty()) {
         spec.scaleStrength =
             numberFlag("--curvature-scale", f.curvatureScale, 0, kMaxSurfaceScaleStrength);

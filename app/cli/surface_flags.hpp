@@ -17,6 +17,8 @@ struct SurfaceFlags {
     std::string tiles;
     bool noMetricCorrection = false;
     bool noCrossTerm = false;
+    bool noRepair = false;
+    std::string mergeDistance;
     std::string curvatureScale;
     std::string direction;
     std::string view;

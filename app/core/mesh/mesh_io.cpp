@@ -89,7 +89,7 @@ TriangleMesh readMeshFile(const std::string& path, MeshFileInfo* infoOut) {
     return mesh;
 }
 
-LoadedMesh loadMesh(const std::string& path) {
+LoadedMesh loadMesh(const std::string& path, const RepairOptions& repair) {
     LoadedMesh loaded;
     loaded.mesh = readMeshFile(path, &loaded.file);
     loaded.weld = weldVertices(loaded.mesh);
@@ -97,6 +97,10 @@ LoadedMesh loadMesh(const std::string& path) {
         throw InputError(path + ": all " + std::to_string(loaded.file.triangles) +
                          " triangles collapse to a line or point once equal vertices are "
                          "merged, nothing to grow a pattern on");
+    loaded.repair = repairMesh(loaded.mesh, repair);
+    if (loaded.mesh.triangles.empty())
+        throw InputError(path + ": no triangle is left once duplicates and collapsed ones are "
+                                "removed, nothing to grow a pattern on");
     loaded.reoriented = orientConsistently(loaded.mesh);
     return loaded;
 }

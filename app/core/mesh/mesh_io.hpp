@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/mesh/mesh_repair.hpp"
 #include "core/mesh/triangle_mesh.hpp"
 
 namespace morphogen {
@@ -28,6 +29,7 @@ struct LoadedMesh {
     TriangleMesh mesh;
     MeshFileInfo file;
     WeldStats weld;
+    RepairStats repair;         // what repairMesh changed (nothing with repair off)
     std::size_t reoriented = 0; // triangles turned to agree with their neighbours
 };
 
@@ -35,16 +37,17 @@ struct LoadedMesh {
 // every OBJ shape; every triangle primitive (triangles, strips, fans) of the
 // glTF default scene (or its first scene) with the node transforms applied, a
 // mirroring transform reversing the winding so it stays outward. Polygons are
-// split as fans from their first corner (right for the convex polygons
-// exporters write). Throws InputError naming the file and the reason for a
+// split by ear clipping in their plane (polygon_triangulation.hpp), right for
+// concave ones too. Throws InputError naming the file and the reason for a
 // missing or unreadable file, a folder, an unknown extension, a truncated or
 // malformed file, an index out of range, a NaN or infinite coordinate, or no
 // triangles at all.
 TriangleMesh readMeshFile(const std::string& path, MeshFileInfo* info = nullptr);
 
-// readMeshFile, then weldVertices and orientConsistently. Throws InputError
-// also when every triangle collapses when welded.
-LoadedMesh loadMesh(const std::string& path);
+// readMeshFile, then weldVertices, repairMesh (mesh_repair.hpp) and
+// orientConsistently: what surface tiles are built on. Throws InputError also
+// when every triangle collapses when welded or is removed by the repair.
+LoadedMesh loadMesh(const std::string& path, const RepairOptions& repair = {});
 
 // Extra vertex data for writeGlb, one entry per position when not empty.
 struct MeshAttributes {

@@ -9,6 +9,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/mesh/mesh_formats.hpp"
+#include "core/mesh/polygon_triangulation.hpp"
 
 namespace morphogen::mesh_formats {
 
@@ -150,10 +151,14 @@ TriangleMesh readObj(const std::string& path, const std::string& text, MeshFileI
                         path + ": face " + std::to_string(faceNumber) + " refers to vertex " +
                         std::to_string(long(idx[k].vertex_index) + 1) + ", but the file has " +
                         std::to_string(vertexCount) + " vertices");
-            for (unsigned int k = 1; k + 1 < corners; ++k)
-                mesh.triangles.push_back({std::uint32_t(idx[0].vertex_index),
-                                          std::uint32_t(idx[k].vertex_index),
-                                          std::uint32_t(idx[k + 1].vertex_index)});
+            // A concave face's fan would overlap itself: ear clipping covers it exactly.
+            std::vector<Eigen::Vector3f> points(corners);
+            for (unsigned int k = 0; k < corners; ++k)
+                points[k] = mesh.positions[std::size_t(idx[k].vertex_index)];
+            for (const std::array<int, 3>& t : triangulatePolygon(points))
+                mesh.triangles.push_back({std::uint32_t(idx[t[0]].vertex_index),
+                                          std::uint32_t(idx[t[1]].vertex_index),
+                                          std::uint32_t(idx[t[2]].vertex_index)});
         }
     }
     info.triangles = mesh.triangles.size();

@@ -71,6 +71,25 @@ std::vector<Problem> problemsOf(const MeshReport& r) {
 
 } // namespace
 
+std::string repairSummary(const RepairStats& m) {
+    std::string done;
+    const auto add = [&](std::size_t n, const char* one, const char* many) {
+        if (n > 0)
+            done += (done.empty() ? "" : ", ") + plural(n, one, many);
+    };
+    add(m.mergedVertices, "open-boundary vertex merged by distance",
+        "open-boundary vertices merged by distance");
+    add(m.collapsedTriangles, "triangle collapsed by the merge removed",
+        "triangles collapsed by the merge removed");
+    add(m.duplicateTriangles, "duplicate triangle removed", "duplicate triangles removed");
+    if (m.specks > 0)
+        done += (done.empty() ? "" : ", ") + plural(m.specks, "speck", "specks") + " (" +
+                plural(m.speckTriangles, "triangle", "triangles") + ") removed";
+    add(m.splitVertices, "vertex copied to cut sheets apart where they met",
+        "vertices copied to cut sheets apart where they met");
+    return done.empty() ? "nothing" : done;
+}
+
 std::string meshReportText(const LoadedMesh& loaded, const MeshReport& r) {
     const MeshFileInfo& f = loaded.file;
     const WeldStats& w = loaded.weld;
@@ -93,7 +112,15 @@ std::string meshReportText(const LoadedMesh& loaded, const MeshReport& r) {
         out += ", " + plural(loaded.reoriented, "triangle", "triangles") +
                " turned to agree with their neighbours";
     out += "\n";
-    out += "surface: " + plural(r.vertices, "vertex", "vertices") + ", " +
+    const RepairStats& m = loaded.repair;
+    if (m.nonManifoldEdges > 0 || m.nonManifoldVertices > 0)
+        out += "found: " + plural(m.nonManifoldEdges, "non-manifold edge", "non-manifold edges") +
+               " (more than two triangles), " +
+               plural(m.nonManifoldVertices, "non-manifold vertex", "non-manifold vertices") +
+               " (several fans of triangles)\n";
+    if (m.changed())
+        out += "repaired: " + repairSummary(m) + "\n";
+    out += "surface (what tiles are built on): " + plural(r.vertices, "vertex", "vertices") + ", " +
            plural(r.edges, "edge", "edges") + ", " + plural(r.triangles, "triangle", "triangles") +
            "\n";
     out += "bounding box: " + point(r.bounds.min) + " to " + point(r.bounds.max) +
@@ -160,6 +187,15 @@ nlohmann::json meshReportJson(const LoadedMesh& loaded, const MeshReport& r) {
           {"unused_vertices_dropped", loaded.weld.unreferencedDropped},
           {"collapsed_triangles_removed", loaded.weld.collapsedRemoved},
           {"triangles_reoriented", loaded.reoriented}}},
+        {"repair",
+         {{"non_manifold_edges_found", loaded.repair.nonManifoldEdges},
+          {"non_manifold_vertices_found", loaded.repair.nonManifoldVertices},
+          {"vertices_merged_by_distance", loaded.repair.mergedVertices},
+          {"collapsed_triangles_removed", loaded.repair.collapsedTriangles},
+          {"duplicate_triangles_removed", loaded.repair.duplicateTriangles},
+          {"specks_removed", loaded.repair.specks},
+          {"speck_triangles_removed", loaded.repair.speckTriangles},
+          {"vertices_split", loaded.repair.splitVertices}}},
         {"vertices", r.vertices},
         {"edges", r.edges},
         {"triangles", r.triangles},

@@ -10,9 +10,13 @@
 namespace morphogen {
 
 // The report `morphogen mesh-info` prints: the file, welding, size, each
-// component's genus and boundary loops, and the problems found (with the
-// verdict of requireManifold). Lines end in '\n'.
+// component's genus and boundary loops, what the repair changed, and the
+// problems that remain (with the verdict of requireUsableForTiles). Lines end in '\n'.
 std::string meshReportText(const LoadedMesh& loaded, const MeshReport& report);
+
+// What repairMesh changed, one line without its end: "2 duplicate triangles
+// removed, 1 vertex copied to cut sheets apart where they met" ("nothing").
+std::string repairSummary(const RepairStats& repair);
 
 // The same as JSON ("usable" is report.usableForTiles()).
 nlohmann::json meshReportJson(const LoadedMesh& loaded, const MeshReport& report);

@@ -8,6 +8,7 @@
 #include "core/base/enum_names.hpp"
 #include "core/base/json_fields.hpp"
 #include "core/base/limits.hpp"
+#include "core/mesh/mesh_repair.hpp"
 
 namespace morphogen {
 
@@ -124,7 +125,7 @@ std::string surfaceScaleByNames() {
 SurfaceSpec surfaceSpecFromJson(const FieldReader& top, const nlohmann::json& block) {
     FieldReader reader(block, top.source(), "surface");
     reader.rejectUnknown({"mesh", "tile_size", "tiles", "metric_correction", "cross_term", "scale",
-                          "direction", "view"});
+                          "direction", "view", "repair", "merge_distance"});
     SurfaceSpec spec;
     spec.mesh = reader.string("mesh", "");
     if (spec.mesh.empty())
@@ -144,6 +145,8 @@ SurfaceSpec surfaceSpecFromJson(const FieldReader& top, const nlohmann::json& bl
     spec.tiles = int(tiles);
     spec.metricCorrection = reader.boolean("metric_correction", spec.metricCorrection);
     spec.crossTerm = reader.boolean("cross_term", spec.crossTerm);
+    spec.repair = reader.boolean("repair", spec.repair);
+    spec.mergeDistance = reader.number("merge_distance", spec.mergeDistance, 0, kMaxMergeDistance);
     if (const nlohmann::json* scale = reader.find("scale")) {
         FieldReader s(*scale, top.source(), "surface.scale");
         s.rejectUnknown({"by", "strength"});
@@ -164,6 +167,11 @@ nlohmann::json surfaceSpecToJson(const SurfaceSpec& spec) {
     j["tiles"] = spec.tiles;
     j["metric_correction"] = spec.metricCorrection;
     j["cross_term"] = spec.crossTerm;
+    // The defaults stay unwritten: sessions written before them read back the same.
+    if (!spec.repair)
+        j["repair"] = false;
+    if (spec.mergeDistance != SurfaceSpec().mergeDistance)
+        j["merge_distance"] = spec.mergeDistance;
     if (spec.scaleBy != SurfaceScaleBy::None)
         j["scale"] = {{"by", toString(spec.scaleBy)}, {"strength", spec.scaleStrength}};
     // The default stays unwritten: sessions written before it read back the same.

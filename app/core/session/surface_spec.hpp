@@ -69,6 +69,11 @@ struct SurfaceSpec {
     bool metricCorrection = true;
     // With metricCorrection: the 9-point stencil's cross term (SurfaceWeightOptions).
     bool crossTerm = true;
+    // Mend the mesh before tiling it (mesh_repair.hpp): merge open-boundary
+    // vertices within mergeDistance of the box diagonal, remove duplicate
+    // triangles and specks, cut fins and bowtie vertices apart.
+    bool repair = true;
+    double mergeDistance = 1e-5; // kDefaultMergeDistance
     SurfaceScaleBy scaleBy = SurfaceScaleBy::None;
     double scaleStrength = 1.0;
     // Anisotropic diffusion only (a "diffusion" of type anisotropic).

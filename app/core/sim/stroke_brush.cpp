@@ -29,6 +29,38 @@ double segmentDistance(double px, double py, double ax, double ay, double bx, do
 
 } // namespace
 
+namespace {
+
+// The distance from p to the polyline `path` (one point: to that point).
+double pathDistance(const std::array<float, 3>& p, const std::vector<std::array<double, 3>>& path) {
+    double d = std::numeric_limits<double>::max();
+    for (std::size_t k = 0; k < path.size(); ++k) {
+        const std::array<double, 3>& a = path[k];
+        const std::array<double, 3>& b = path[std::min(k + 1, path.size() - 1)];
+        const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        const double q[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+        const double len2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+        double t = len2 > 0 ? (q[0] * e[0] + q[1] * e[1] + q[2] * e[2]) / len2 : 0.0;
+        t = std::clamp(t, 0.0, 1.0);
+        const double x = q[0] - t * e[0], y = q[1] - t * e[1], z = q[2] - t * e[2];
+        d = std::min(d, std::sqrt(x * x + y * y + z * z));
+    }
+    return d;
+}
+
+} // namespace
+
+double nearestTexelDistance(const StrokeSpec& stroke, const AtlasPositions& positions,
+                            const Atlas* atlas) {
+    double nearest = std::numeric_limits<double>::infinity();
+    if (stroke.surfacePoints.empty())
+        return nearest;
+    for (std::uint32_t i = 0; i < positions.size(); ++i)
+        if (!atlas || (i < atlas->cellCount() && atlas->used(i)))
+            nearest = std::min(nearest, pathDistance(positions[i], stroke.surfacePoints));
+    return nearest;
+}
+
 BrushRegion surfaceStrokeRegion(const StrokeSpec& stroke, const Domain& domain,
                                 const AtlasPositions& positions) {
     const double r = stroke.radius, inner = r * (1.0 - stroke.falloff);
@@ -38,19 +70,7 @@ BrushRegion surfaceStrokeRegion(const StrokeSpec& stroke, const Domain& domain,
     for (std::uint32_t i = 0; i < positions.size() && i < std::uint32_t(domain.cellCount()); ++i) {
         if (atlas && !atlas->used(i))
             continue;
-        const std::array<float, 3>& p = positions[i];
-        double d = std::numeric_limits<double>::max();
-        for (std::size_t k = 0; k < path.size(); ++k) {
-            const std::array<double, 3>& a = path[k];
-            const std::array<double, 3>& b = path[std::min(k + 1, path.size() - 1)];
-            const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-            const double q[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-            const double len2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
-            double t = len2 > 0 ? (q[0] * e[0] + q[1] * e[1] + q[2] * e[2]) / len2 : 0.0;
-            t = std::clamp(t, 0.0, 1.0);
-            const double x = q[0] - t * e[0], y = q[1] - t * e[1], z = q[2] - t * e[2];
-            d = std::min(d, std::sqrt(x * x + y * y + z * z));
-        }
+        const double d = pathDistance(positions[i], path);
         if (d > r)
             continue;
         const float weight = d <= inner ? 1.0f : float((r - d) / (r - inner));

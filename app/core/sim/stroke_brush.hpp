@@ -25,6 +25,12 @@ using AtlasPositions = std::vector<std::array<float, 3>>;
 BrushRegion strokeRegion(const StrokeSpec& stroke, const Domain& domain,
                          const AtlasPositions* positions = nullptr);
 
+// The distance from a surface stroke's path to the nearest used texel centre
+// (`atlas` null: every position counts); infinity without positions. A stroke
+// whose distance passes its radius paints nothing.
+double nearestTexelDistance(const StrokeSpec& stroke, const AtlasPositions& positions,
+                            const Atlas* atlas);
+
 // The brush write of a stroke for the model in force (its chemical and
 // parameter names resolved). Throws InputError when the model lacks the
 // stroke's chemical or parameter (a stage switched models), naming both.

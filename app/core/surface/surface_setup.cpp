@@ -10,7 +10,9 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/limits.hpp"
+#include "core/mesh/mesh_report.hpp"
 #include "core/mesh/mesh_samples.hpp"
+#include "core/sim/stroke_brush.hpp"
 #include "core/surface/surface_weights.hpp"
 #include "core/surface/tile_builder.hpp"
 
@@ -32,20 +34,59 @@ LoadedMesh loadSurfaceMesh(const SurfaceSpec& spec, const std::string& baseDir) 
     std::filesystem::path path(mesh);
     if (!baseDir.empty() && path.is_relative())
         path = std::filesystem::path(baseDir) / path;
-    return loadMesh(path.string());
+    RepairOptions repair;
+    repair.enabled = spec.repair;
+    repair.mergeDistance = spec.mergeDistance;
+    return loadMesh(path.string(), repair);
 }
 
 std::string SurfaceSetup::describe() const {
     std::ostringstream os;
     const Atlas& atlas = *tiles.atlas;
-    os << "mesh " << mesh.file.path << ": " << mesh.mesh.triangles.size() << " triangles, area "
-       << tiles.surfaceArea << " (mesh units^2); simplified to "
-       << tiles.simplified.triangles.size() << " triangles -> " << atlas.tileCount() << " tiles of "
-       << atlas.tileSize() << "x" << atlas.tileSize() << " texels in a " << atlas.width() << "x"
-       << atlas.height() << " atlas; " << unitsPerWorld << " model units per mesh unit, texels "
-       << texelUnits << " units on average; built in " << seconds << " s";
+    os << "mesh " << mesh.file.path << ": ";
+    if (mesh.repair.changed())
+        os << "repaired (" << repairSummary(mesh.repair) << "), ";
+    os << mesh.mesh.triangles.size() << " triangles, area " << tiles.surfaceArea
+       << " (mesh units^2); simplified to " << tiles.simplified.triangles.size() << " triangles -> "
+       << atlas.tileCount() << " tiles of " << atlas.tileSize() << "x" << atlas.tileSize()
+       << " texels in a " << atlas.width() << "x" << atlas.height() << " atlas; " << unitsPerWorld
+       << " model units per mesh unit, texels " << texelUnits << " units on average; built in "
+       << seconds << " s";
     return os.str();
 }
+
+namespace {
+
+// A stroke or drop placed for another model (a preset's on its own mesh, run
+// on the artist's) would paint nothing and say nothing: refused, naming it.
+void requireStrokesOnSurface(const Session& session, const Atlas& atlas, const TriangleMesh& mesh,
+                             const std::string& source) {
+    const Bounds box = boundsOf(mesh.positions);
+    // A stroke within a texel or two of the surface was placed on it (the
+    // designer's picks land between texel centres): only clear misses count.
+    const double slack = 0.02 * box.diagonal();
+    for (std::size_t i = 0; i < session.edits.size(); ++i) {
+        const LiveEdit& e = session.edits[i];
+        if (!e.stroke || !e.stroke->surface || e.stroke->surfacePoints.empty())
+            continue;
+        const StrokeSpec& stroke = *e.stroke;
+        const double nearest = nearestTexelDistance(stroke, *session.atlasPositions, &atlas);
+        if (nearest <= std::max(stroke.radius, slack))
+            continue;
+        const auto& p = stroke.surfacePoints.front();
+        std::ostringstream os;
+        os << source << ": edit " << i + 1 << " (step " << e.step << "), a stroke at (" << p[0]
+           << ", " << p[1] << ", " << p[2] << ") of radius " << stroke.radius
+           << ", misses the surface: its nearest point is " << nearest << " away (the model spans ("
+           << box.min.x() << ", " << box.min.y() << ", " << box.min.z() << ") to (" << box.max.x()
+           << ", " << box.max.y() << ", " << box.max.z()
+           << ")); strokes and drops are placed in the coordinates of the model they were "
+              "made on: place them on this one, or leave them out";
+        throw InputError(os.str());
+    }
+}
+
+} // namespace
 
 SurfaceSetup setUpSurface(Session& session,
                           const std::function<void(const std::string&, double)>& progress) {
@@ -99,6 +140,7 @@ SurfaceSetup setUpSurface(Session& session,
     setup.texelUnits = used ? std::sqrt(texelArea / double(used)) * setup.unitsPerWorld : 0;
     useAtlas(session, setup.tiles.atlas, setup.weights);
     session.atlasPositions = texelPositionsOf(setup.tiles);
+    requireStrokesOnSurface(session, *setup.tiles.atlas, setup.mesh.mesh, spec.mesh);
     setup.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     // The run's handle on the surface for deformations (a copy: the caller
     // keeps its own setup).
