@@ -191,6 +191,9 @@ string(FIND "${last_stderr}" "edit 1 (step 0), a stroke at (" at)
 if(at EQUAL -1)
   message(SEND_ERROR "surface_drops_blob on a torus: want the first drop named: ${last_stderr}")
 endif()
+# Two parts 10,000 units apart: each is a speck in the framed screenshot, which says so.
+file(WRITE "${WORK}/far.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 10000 0 0\nv 10001 0 0\nv 10000 1 0\nv 10000 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n")
+run(0 "fill little of it (they lie far apart)" render --mesh far.obj --preset turk_large_spots --tiles 60 --tile-size 4 --steps 5 --backend cpu --resolution 96x96 --out far.png)
 # Generalized diffusion has no surface form yet: refused, naming the operator.
 run(2 "cannot run on an atlas domain" render --mesh sample:sphere --preset gs_generalized_e ${small} --out bad.png)
 run(2 "an image field cannot vary a parameter over a mesh" render --mesh sample:sphere

@@ -28,17 +28,11 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path freshDir(const std::string& name) {
-    const fs::path dir = test::scratchDir("morphogen_output_files_test") / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return test::freshScratchDir("morphogen_output_files_test", name);
 }
 
 std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
+    return test::readTextFile(path);
 }
 
 void writeText(const fs::path& path, const std::string& text) {

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <unistd.h>
@@ -70,6 +73,20 @@ std::filesystem::path scratchDir(const std::string& name) {
         std::filesystem::temp_directory_path() / (name + "-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     return dir;
+}
+
+std::filesystem::path freshScratchDir(const std::string& name, const std::string& sub) {
+    const std::filesystem::path dir = scratchDir(name) / sub;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+std::string readTextFile(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
 }
 
 State runCpu(const Session& session) {

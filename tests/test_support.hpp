@@ -29,6 +29,12 @@ double planeSum(const State& s, int chemical);
 // created if missing.
 std::filesystem::path scratchDir(const std::string& name);
 
+// scratchDir(name) / sub, emptied (removed and created again).
+std::filesystem::path freshScratchDir(const std::string& name, const std::string& sub);
+
+// A whole file as text ("" when it cannot be read).
+std::string readTextFile(const std::filesystem::path& path);
+
 // Runs a session on the CPU backend from its initial condition.
 State runCpu(const Session& session);
 

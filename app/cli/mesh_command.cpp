@@ -52,8 +52,8 @@ void meshInfo(const MeshInfoFlags& f) {
 
     std::fputs(meshReportText(loaded, report).c_str(), stdout);
     std::fflush(stdout);
-    std::fprintf(stderr, "mesh-info: read and welded in %.3f s, checked in %.3f s\n", loadSeconds,
-                 checkSeconds);
+    std::fprintf(stderr, "mesh-info: read, welded and repaired in %.3f s, checked in %.3f s\n",
+                 loadSeconds, checkSeconds);
     if (!f.json.empty()) {
         nlohmann::json j = meshReportJson(loaded, report);
         j["seconds"] = {{"read_and_weld", loadSeconds}, {"check", checkSeconds}};

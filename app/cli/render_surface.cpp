@@ -9,6 +9,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
+#include "core/mesh/mesh_check.hpp"
 #include "core/output/colormap.hpp"
 #include "core/session/session.hpp"
 #include "core/surface/surface_colours.hpp"
@@ -51,6 +52,32 @@ void writeScreenshot(const gl::SurfaceImage& image, const std::string& path) {
         for (int i = 0; i < image.width * 4; ++i)
             row[i] = src[i] / 255.0f;
     });
+}
+
+// A model whose parts lie far apart (or that is a sliver of its bounding box)
+// covers a few pixels of a screenshot framed on the whole: an empty-looking
+// picture that must not pass in silence.
+void warnIfBarelyVisible(const gl::SurfaceImage& image, const gl::ViewOptions& view,
+                         const SurfaceSetup& setup, const std::string& path) {
+    std::uint8_t background[4];
+    for (int c = 0; c < 4; ++c)
+        background[c] = std::uint8_t(
+            std::lround(std::clamp(view.background[std::size_t(c)], 0.0f, 1.0f) * 255));
+    std::size_t covered = 0;
+    const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
+    for (std::size_t i = 0; i < pixels; ++i)
+        covered += std::equal(background, background + 4, image.rgba.data() + i * 4) ? 0 : 1;
+    if (double(covered) >= 0.005 * double(pixels))
+        return;
+    const MeshReport report = checkMesh(setup.mesh.mesh);
+    std::fprintf(stderr,
+                 "morphogen: warning: %s: the model covers %zu of its %zu pixels (%.3g%%): the "
+                 "view frames the whole bounding box (diagonal %.6g), and the model's %zu "
+                 "part(s) fill little of it%s; move the camera closer with --view "
+                 "AZIMUTH,ELEVATION,DISTANCE, or render the parts as separate models\n",
+                 path.c_str(), covered, pixels, 100.0 * double(covered) / double(pixels),
+                 double(report.bounds.diagonal()), report.components.size(),
+                 report.components.size() > 1 ? " (they lie far apart)" : "");
 }
 
 } // namespace
@@ -112,11 +139,15 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
                 gl::renderTurntable(renderer, view, v.turntable);
             for (int k = 0; k < int(frames.size()); ++k) {
                 const std::string path = framePath(out, k);
+                if (k == 0)
+                    warnIfBarelyVisible(frames[0], view, setup, path);
                 writeScreenshot(frames[std::size_t(k)], files.stage(path));
                 written.push_back(path);
             }
         } else {
-            writeScreenshot(renderer.render(view), files.stage(out));
+            const gl::SurfaceImage image = renderer.render(view);
+            warnIfBarelyVisible(image, view, setup, out);
+            writeScreenshot(image, files.stage(out));
             written.push_back(out);
         }
     }
