@@ -194,6 +194,18 @@ endif()
 # Two parts 10,000 units apart: each is a speck in the framed screenshot, which says so.
 file(WRITE "${WORK}/far.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 10000 0 0\nv 10001 0 0\nv 10000 1 0\nv 10000 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n")
 run(0 "fill little of it (they lie far apart)" render --mesh far.obj --preset turk_large_spots --tiles 60 --tile-size 4 --steps 5 --backend cpu --resolution 96x96 --out far.png)
+# A model with texture coordinates: the GLB is that model, the pattern baked into its UVs.
+set(cube "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nv -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n")
+string(APPEND cube "vt 0.02 0.02\nvt 0.31 0.02\nvt 0.31 0.48\nvt 0.02 0.48\n")
+string(APPEND cube "vt 0.35 0.02\nvt 0.65 0.02\nvt 0.65 0.48\nvt 0.35 0.48\n")
+string(APPEND cube "vt 0.69 0.02\nvt 0.98 0.02\nvt 0.98 0.48\nvt 0.69 0.48\n")
+string(APPEND cube "vt 0.02 0.52\nvt 0.31 0.52\nvt 0.31 0.98\nvt 0.02 0.98\n")
+string(APPEND cube "vt 0.35 0.52\nvt 0.65 0.52\nvt 0.65 0.98\nvt 0.35 0.98\n")
+string(APPEND cube "vt 0.69 0.52\nvt 0.98 0.52\nvt 0.98 0.98\nvt 0.69 0.98\n")
+string(APPEND cube "f 1/1 2/2 3/3 4/4\nf 6/5 5/6 8/7 7/8\nf 2/9 6/10 7/11 3/12\n")
+string(APPEND cube "f 5/13 1/14 4/15 8/16\nf 4/17 3/18 7/19 8/20\nf 5/21 6/22 2/23 1/24\n")
+file(WRITE "${WORK}/cube_uv.obj" "${cube}")
+run(0 "baked into the model's own texture coordinates: 24 vertices, 12 triangles" render --mesh cube_uv.obj --preset turk_large_spots --tiles 60 --tile-size 4 --steps 5 --backend cpu --out cube_uv.glb)
 # Generalized diffusion has no surface form yet: refused, naming the operator.
 run(2 "cannot run on an atlas domain" render --mesh sample:sphere --preset gs_generalized_e ${small} --out bad.png)
 run(2 "an image field cannot vary a parameter over a mesh" render --mesh sample:sphere

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "core/base/errors.hpp"
@@ -15,6 +16,7 @@
 #include "core/surface/surface_colours.hpp"
 #include "core/surface/surface_features.hpp"
 #include "core/surface/surface_glb.hpp"
+#include "core/surface/uv_bake.hpp"
 #include "gl/surface_view.hpp"
 
 namespace morphogen::cli {
@@ -124,7 +126,28 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
     const SurfaceColours c = surfaceColours(result.state, result.completed, atlas);
     const SurfaceView& v = result.completed.surface.view;
     if (!out.empty() && isModelOutput(out)) {
-        writeTexturedGlb(texturedSurface(setup.tiles, c), files.stage(out));
+        // A model with texture coordinates gets the pattern baked into them:
+        // its own mesh and layout, ready for its material. Without, the
+        // tiled surface and its atlas are the model.
+        const std::optional<UvMesh> uvs = readUvMesh(setup.mesh.file.path);
+        if (uvs && bakeableUvs(*uvs)) {
+            const UvBakeOptions bake;
+            writeTexturedGlb(bakeIntoUvs(*uvs, setup.tiles, c, bake), files.stage(out));
+            std::fprintf(stderr,
+                         "morphogen: baked into the model's own texture coordinates: %zu "
+                         "vertices, %zu triangles, %dx%d textures\n",
+                         uvs->positions.size(), uvs->triangles.size(), bake.size, bake.size);
+        } else {
+            const std::string& source = setup.mesh.file.format;
+            if (uvs)
+                std::fprintf(stderr, "morphogen: the model's texture coordinates leave [0, 1] "
+                                     "(a tiled or UDIM layout): written with the tiles' atlas "
+                                     "instead\n");
+            else if (source == "glTF" || source == "GLB")
+                std::fprintf(stderr, "morphogen: a glTF model's own texture coordinates are not "
+                                     "read yet (an OBJ's are): written with the tiles' atlas\n");
+            writeTexturedGlb(texturedSurface(setup.tiles, c), files.stage(out));
+        }
         written.push_back(out);
     } else if (!out.empty()) {
         std::unique_ptr<gl::Context> own;

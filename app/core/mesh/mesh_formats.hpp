@@ -14,7 +14,10 @@ namespace morphogen::mesh_formats {
 // any model surface tiles need, and below what 32-bit indices and memory allow.
 constexpr std::size_t kMaxMeshElements = std::size_t(1) << 26;
 
-TriangleMesh readObj(const std::string& path, const std::string& text, MeshFileInfo& info);
+// `uvs`, when given, receives the faces with their texture coordinates (left
+// empty when some face has none).
+TriangleMesh readObj(const std::string& path, const std::string& text, MeshFileInfo& info,
+                     UvMesh* uvs = nullptr);
 TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info);
 
 } // namespace morphogen::mesh_formats

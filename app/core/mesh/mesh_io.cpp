@@ -89,6 +89,18 @@ TriangleMesh readMeshFile(const std::string& path, MeshFileInfo* infoOut) {
     return mesh;
 }
 
+std::optional<UvMesh> readUvMesh(const std::string& path) {
+    if (lowerExtension(path) != ".obj")
+        return std::nullopt;
+    readMeshFile(path); // the checks every reader shares, with their messages
+    MeshFileInfo info;
+    UvMesh uvs;
+    mesh_formats::readObj(path, readWholeFile(path), info, &uvs);
+    if (uvs.triangles.empty())
+        return std::nullopt;
+    return uvs;
+}
+
 LoadedMesh loadMesh(const std::string& path, const RepairOptions& repair) {
     LoadedMesh loaded;
     loaded.mesh = readMeshFile(path, &loaded.file);

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +51,21 @@ TriangleMesh readMeshFile(const std::string& path, MeshFileInfo* info = nullptr)
 // orientConsistently: what surface tiles are built on. Throws InputError also
 // when every triangle collapses when welded or is removed by the repair.
 LoadedMesh loadMesh(const std::string& path, const RepairOptions& repair = {});
+
+// The model as its file lays it out in texture space: one vertex per
+// distinct (position, texture coordinate) pair, triangles as the file's faces
+// split (the same triangles readMeshFile reads, in the same coordinates).
+struct UvMesh {
+    std::vector<Eigen::Vector3f> positions;
+    std::vector<Eigen::Vector2f> uvs; // glTF's convention: v = 0 is the image's top row
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+// The file's first texture coordinates, for baking into them: an OBJ whose
+// every face has them ("vt", flipped to glTF's v down). Nothing for a file
+// without them on every face, and for glTF files (not read yet). Throws
+// InputError as readMeshFile does.
+std::optional<UvMesh> readUvMesh(const std::string& path);
 
 // Extra vertex data for writeGlb, one entry per position when not empty.
 struct MeshAttributes {

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <utility>
+#include <vector>
 
 #include <tiny_obj_loader.h>
 
@@ -109,7 +112,8 @@ void checkLines(const std::string& path, const std::string& text) {
 
 } // namespace
 
-TriangleMesh readObj(const std::string& path, const std::string& text, MeshFileInfo& info) {
+TriangleMesh readObj(const std::string& path, const std::string& text, MeshFileInfo& info,
+                     UvMesh* uvs) {
     info.format = "OBJ";
     checkLines(path, text);
 
@@ -130,6 +134,10 @@ TriangleMesh readObj(const std::string& path, const std::string& text, MeshFileI
                                             attrib.vertices[3 * i + 2]);
     info.vertices = vertexCount;
 
+    // With `uvs`: per triangle corner, its (position, texture coordinate) pair.
+    std::vector<std::array<std::pair<int, int>, 3>> uvCorners;
+    bool everyCornerHasUv = uvs != nullptr;
+    const std::size_t texcoordCount = attrib.texcoords.size() / 2;
     std::size_t faceNumber = 0;
     for (const tinyobj::shape_t& shape : reader.GetShapes()) {
         if (!shape.lines.indices.empty() || !shape.points.indices.empty())
@@ -155,13 +163,43 @@ TriangleMesh readObj(const std::string& path, const std::string& text, MeshFileI
             std::vector<Eigen::Vector3f> points(corners);
             for (unsigned int k = 0; k < corners; ++k)
                 points[k] = mesh.positions[std::size_t(idx[k].vertex_index)];
-            for (const std::array<int, 3>& t : triangulatePolygon(points))
+            for (const std::array<int, 3>& t : triangulatePolygon(points)) {
                 mesh.triangles.push_back({std::uint32_t(idx[t[0]].vertex_index),
                                           std::uint32_t(idx[t[1]].vertex_index),
                                           std::uint32_t(idx[t[2]].vertex_index)});
+                if (!everyCornerHasUv)
+                    continue;
+                std::array<std::pair<int, int>, 3> corner;
+                for (int k = 0; k < 3; ++k) {
+                    const tinyobj::index_t& c = idx[t[std::size_t(k)]];
+                    everyCornerHasUv = everyCornerHasUv && c.texcoord_index >= 0 &&
+                                       std::size_t(c.texcoord_index) < texcoordCount;
+                    corner[std::size_t(k)] = {c.vertex_index, c.texcoord_index};
+                }
+                uvCorners.push_back(corner);
+            }
         }
     }
     info.triangles = mesh.triangles.size();
+    if (everyCornerHasUv) {
+        std::map<std::pair<int, int>, std::uint32_t> vertexOf;
+        for (const auto& corners : uvCorners) {
+            std::array<std::uint32_t, 3> t{};
+            for (int k = 0; k < 3; ++k) {
+                const auto [v, vt] = corners[std::size_t(k)];
+                const auto [it, added] =
+                    vertexOf.emplace(corners[std::size_t(k)], std::uint32_t(uvs->positions.size()));
+                if (added) {
+                    uvs->positions.push_back(mesh.positions[std::size_t(v)]);
+                    // OBJ's v runs up from the image's bottom row; glTF's down from its top.
+                    uvs->uvs.emplace_back(attrib.texcoords[2 * std::size_t(vt)],
+                                          1.0f - attrib.texcoords[2 * std::size_t(vt) + 1]);
+                }
+                t[std::size_t(k)] = it->second;
+            }
+            uvs->triangles.push_back(t);
+        }
+    }
     return mesh;
 }
 

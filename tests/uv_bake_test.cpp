@@ -1,0 +1,161 @@
+// Baking into the model's own texture coordinates (core/surface/uv_bake.hpp):
+// each covered texel holds the pattern at its point on the surface, islands
+// are padded, the rest of the image is empty, and the GLB carries the
+// model's vertices and UVs. The pattern here is a smooth made-up field of
+// the texels' positions, so what a texel should hold is known.
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "core/mesh/mesh_io.hpp"
+#include "core/mesh/mesh_samples.hpp"
+#include "core/surface/surface_glb.hpp"
+#include "core/surface/tile_builder.hpp"
+#include "core/surface/uv_bake.hpp"
+#include "test_support.hpp"
+
+using namespace morphogen;
+
+namespace {
+
+// The made-up pattern: smooth in space, so nearby texels hold nearby values.
+std::array<double, 3> field(const Eigen::Vector3f& p) {
+    return {127.5 + 100 * std::sin(1.3 * p.x()), 127.5 + 100 * std::cos(1.1 * p.y()),
+            127.5 + 100 * std::sin(2.0 * p.z())};
+}
+
+struct Baked {
+    UvMesh mesh;
+    SurfaceTiles tiles;
+    TexturedMesh result;
+};
+
+// The exporter's torus (UV seams copied) with its UVs squeezed into
+// [0.1, 0.6] x [0.2, 0.7]: one island, empty texture round it.
+Baked bakeTorus(int size) {
+    Baked b;
+    MeshAttributes attributes;
+    const TriangleMesh seams = torusWithSeams(24, attributes);
+    b.mesh.positions = seams.positions;
+    b.mesh.triangles = seams.triangles;
+    for (const Eigen::Vector2f& uv : attributes.texcoords)
+        b.mesh.uvs.emplace_back(0.1f + 0.5f * uv.x(), 0.2f + 0.5f * uv.y());
+    TriangleMesh welded = seams;
+    weldVertices(welded);
+    TileOptions options;
+    options.tileSize = 4;
+    options.tiles = 600;
+    b.tiles = buildSurfaceTiles(welded, options);
+    SurfaceColours colours;
+    const std::size_t cells = b.tiles.atlas->cellCount();
+    colours.colours.assign(cells, {0, 0, 0, 255});
+    colours.height.assign(cells, 0.0f);
+    for (std::size_t i = 0; i < cells; ++i) {
+        const std::array<double, 3> f = field(b.tiles.texelPositions[i]);
+        for (int k = 0; k < 3; ++k)
+            colours.colours[i][std::size_t(k)] = std::uint8_t(std::lround(f[std::size_t(k)]));
+        colours.height[i] = float(f[0] / 255.0);
+    }
+    UvBakeOptions bake;
+    bake.size = size;
+    b.result = bakeIntoUvs(b.mesh, b.tiles, colours, bake);
+    return b;
+}
+
+} // namespace
+
+TEST(UvBake, EachTexelHoldsThePatternAtItsPointOnTheSurface) {
+    const int size = 256;
+    const Baked b = bakeTorus(size);
+    ASSERT_EQ(b.result.baseColour.width, size);
+    ASSERT_EQ(b.result.positions.size(), b.mesh.positions.size());
+    EXPECT_EQ(b.result.uvs, b.mesh.uvs);
+    // At each triangle's centroid: the texel there against the field at the
+    // centroid's 3D point. Tolerance: the blend spans about 1.5 texels of the
+    // tiles (0.06 units here) and the texel centre sits up to half a baked
+    // texel from the centroid; the field changes by at most 200 per unit:
+    // 0.1 units is 20 of 255.
+    int checked = 0;
+    double worst = 0;
+    for (const auto& t : b.mesh.triangles) {
+        const Eigen::Vector2f uv = (b.mesh.uvs[t[0]] + b.mesh.uvs[t[1]] + b.mesh.uvs[t[2]]) / 3;
+        const Eigen::Vector3f p =
+            (b.mesh.positions[t[0]] + b.mesh.positions[t[1]] + b.mesh.positions[t[2]]) / 3;
+        const int x = int(uv.x() * size), y = int(uv.y() * size);
+        const auto& texel = b.result.baseColour.texels[std::size_t(y) * size + std::size_t(x)];
+        ASSERT_EQ(texel[3], 255) << "an island texel left empty at " << x << ", " << y;
+        const std::array<double, 3> want = field(p);
+        for (int k = 0; k < 3; ++k)
+            worst = std::max(worst, std::abs(double(texel[std::size_t(k)]) - want[std::size_t(k)]));
+        ++checked;
+    }
+    EXPECT_GT(checked, 500);
+    EXPECT_LE(worst, 20.0);
+    std::printf("largest difference from the field: %.1f of 255 over %d texels\n", worst, checked);
+}
+
+TEST(UvBake, IslandsArePaddedAndTheRestIsEmpty) {
+    const int size = 256;
+    const Baked b = bakeTorus(size);
+    const auto texel = [&](double u, double v) {
+        return b.result.baseColour.texels[std::size_t(v * size) * size + std::size_t(u * size)];
+    };
+    // Three texels right of the island's edge (u = 0.6): padded.
+    EXPECT_EQ(texel(0.6 + 3.5 / size, 0.45)[3], 255);
+    EXPECT_EQ(texel(0.1 - 3.5 / size, 0.45)[3], 255);
+    // Far from it: empty.
+    EXPECT_EQ(texel(0.9, 0.9)[3], 0);
+    EXPECT_EQ(texel(0.9, 0.05)[3], 0);
+    // The normal map: flat where nothing is, tilted somewhere on the island.
+    const auto& n = b.result.normalMap;
+    ASSERT_EQ(n.width, size);
+    EXPECT_EQ(n.texels[std::size_t(0.9 * size) * size + std::size_t(0.9 * size)][2], 255);
+    bool tilted = false;
+    for (const auto& t : n.texels)
+        tilted = tilted || t[0] < 120 || t[0] > 136;
+    EXPECT_TRUE(tilted);
+}
+
+TEST(UvBake, TheGlbHoldsTheModelsVerticesAndUvs) {
+    const Baked b = bakeTorus(64);
+    const std::string path =
+        (test::scratchDir("morphogen_uv_bake_test") / "torus_baked.glb").string();
+    writeTexturedGlb(b.result, path);
+    const TexturedMesh again = readTexturedGlb(path);
+    EXPECT_EQ(again.positions.size(), b.mesh.positions.size());
+    EXPECT_EQ(again.triangles.size(), b.mesh.triangles.size());
+    ASSERT_EQ(again.uvs.size(), b.mesh.uvs.size());
+    for (std::size_t i = 0; i < again.uvs.size(); ++i)
+        ASSERT_TRUE(again.uvs[i].isApprox(b.mesh.uvs[i], 1e-6f)) << i;
+    EXPECT_EQ(again.baseColour.width, 64);
+    EXPECT_EQ(again.normalMap.width, 64);
+}
+
+TEST(UvBake, UvsAreReadFromObjFaces) {
+    const std::filesystem::path dir = test::freshScratchDir("morphogen_uv_bake_test", "obj");
+    // A square of two triangles; its corners share positions but not UVs at one seam.
+    std::ofstream(dir / "square.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                         "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
+                                         "f 1/1 2/2 3/3\nf 1/5 3/3 4/4\n";
+    const std::optional<UvMesh> uvs = readUvMesh((dir / "square.obj").string());
+    ASSERT_TRUE(uvs.has_value());
+    EXPECT_EQ(uvs->triangles.size(), 2u);
+    EXPECT_EQ(uvs->positions.size(), 5u); // vertex 1 twice: two texture coordinates
+    // OBJ's v up becomes glTF's v down.
+    EXPECT_TRUE(uvs->uvs[0].isApprox(Eigen::Vector2f(0, 1)));
+    EXPECT_TRUE(bakeableUvs(*uvs));
+    // A face without texture coordinates: no layout to bake into.
+    std::ofstream(dir / "bare.obj")
+        << "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 1 3 2\n";
+    EXPECT_FALSE(readUvMesh((dir / "bare.obj").string()).has_value());
+    // A tiled layout (UVs past 1) is not baked.
+    UvMesh tiled = *uvs;
+    tiled.uvs[0].x() = 3.0f;
+    EXPECT_FALSE(bakeableUvs(tiled));
+}
