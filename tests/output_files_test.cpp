@@ -374,3 +374,23 @@ TEST(OutputFiles, AShortWriteIsCaughtBeforeTheRename) {
             << e.what();
     }
 }
+
+TEST(OutputFiles, AJournalThatDoesNotDescribeACommitMovesNothing) {
+    // A journal naming a file in another folder as its "temporary" (forged, or
+    // from elsewhere): recovery leaves both files where they are.
+    const fs::path dir = freshDir("forged_journal");
+    const fs::path elsewhere = freshDir("forged_journal_elsewhere");
+    writeText(elsewhere / "secret.txt", "secret");
+    writeText(dir / "out.json", "old");
+    pid_t gone = ::fork();
+    if (gone == 0)
+        std::_Exit(0);
+    ::waitpid(gone, nullptr, 0);
+    const std::string pid = std::to_string(gone);
+    writeText(dir / (".~commit." + pid + "-0.journal"),
+              R"({"morphogen_commit": 1, "files": [[")" + (elsewhere / "secret.txt").string() +
+                  R"(", ")" + (dir / "out.json").string() + R"("]], "journals": []})");
+    recoverInterruptedOutput(dir.string());
+    EXPECT_EQ(readText(dir / "out.json"), "old");
+    EXPECT_EQ(readText(elsewhere / "secret.txt"), "secret");
+}

@@ -17,6 +17,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
@@ -250,16 +251,47 @@ std::optional<Journal> readJournal(const fs::path& path) {
     return journal;
 }
 
+// A file this user owns (what the clean-up may touch in a shared folder).
+bool ownedByMe(const fs::path& path) {
+    struct stat st {};
+    return ::lstat(path.c_str(), &st) == 0 && st.st_uid == ::geteuid();
+}
+
+// Whether a journal describes what this file's commit writes, and nothing
+// else: a regular file, each temporary named for the journal's process and
+// beside its final path, each copy a journal name: a forged journal moves
+// nothing.
+bool trustworthy(const fs::path& path, const Journal& journal) {
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+        return false;
+    const long pid = writerPidOf(path.filename().string());
+    for (const auto& [temporary, final] : journal.files) {
+        const fs::path t(temporary), f(final);
+        if (!t.is_absolute() || t.parent_path() != f.parent_path() ||
+            writerPidOf(t.filename().string()) != pid)
+            return false;
+    }
+    for (const std::string& copy : journal.copies)
+        if (!isJournalName(fs::path(copy).filename().string()))
+            return false;
+    return true;
+}
+
 // Finishes a killed run's commit: every temporary still there is moved into
 // place (all were complete before the journal was written), then the
 // journal's copies go.
 void finishJournal(const fs::path& path) {
+    if (!ownedByMe(path))
+        return; // another user's: theirs to finish
     const std::optional<Journal> journal = readJournal(path);
     std::error_code ec;
     if (!journal) {
-        fs::remove(path, ec);
+        fs::remove(path, ec); // killed while writing it: no rename had begun
         return;
     }
+    if (!trustworthy(path, *journal))
+        return;
     std::vector<std::string> folders;
     for (const auto& [temporary, final] : journal->files)
         folders.push_back(folderOf(final));
@@ -467,7 +499,7 @@ void recoverInterruptedOutput(const std::string& folder) {
         std::vector<fs::path> stale;
         for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
             const std::string name = e.path().filename().string();
-            if (!isJournalName(name) && processGone(writerPidOf(name)))
+            if (!isJournalName(name) && processGone(writerPidOf(name)) && ownedByMe(e.path()))
                 stale.push_back(e.path());
         }
         for (const fs::path& p : stale)
