@@ -206,6 +206,8 @@ string(APPEND cube "f 1/1 2/2 3/3 4/4\nf 6/5 5/6 8/7 7/8\nf 2/9 6/10 7/11 3/12\n
 string(APPEND cube "f 5/13 1/14 4/15 8/16\nf 4/17 3/18 7/19 8/20\nf 5/21 6/22 2/23 1/24\n")
 file(WRITE "${WORK}/cube_uv.obj" "${cube}")
 run(0 "baked into the model's own texture coordinates: 24 vertices, 12 triangles" render --mesh cube_uv.obj --preset turk_large_spots --tiles 60 --tile-size 4 --steps 5 --backend cpu --out cube_uv.glb)
+# ... and a GLB's TEXCOORD_0 (the sample torus, UV seams split, turned y-up by its node).
+run(0 "baked into the model's own texture coordinates: 2145 vertices" render --mesh ${CMAKE_CURRENT_LIST_DIR}/../models/meshes/torus.glb --preset turk_large_spots --tiles 150 --tile-size 4 --steps 5 --backend cpu --out torus_uv.glb)
 # Generalized diffusion has no surface form yet: refused, naming the operator.
 run(2 "cannot run on an atlas domain" render --mesh sample:sphere --preset gs_generalized_e ${small} --out bad.png)
 run(2 "an image field cannot vary a parameter over a mesh" render --mesh sample:sphere

@@ -159,3 +159,20 @@ TEST(UvBake, UvsAreReadFromObjFaces) {
     tiled.uvs[0].x() = 3.0f;
     EXPECT_FALSE(bakeableUvs(tiled));
 }
+
+TEST(UvBake, UvsAreReadFromGlbPrimitives) {
+    MeshAttributes attributes;
+    const TriangleMesh torus = torusWithSeams(16, attributes);
+    const std::string path =
+        (test::freshScratchDir("morphogen_uv_bake_test", "glb") / "torus.glb").string();
+    writeGlb(torus, attributes, path);
+    const std::optional<UvMesh> uvs = readUvMesh(path);
+    ASSERT_TRUE(uvs.has_value());
+    ASSERT_EQ(uvs->positions.size(), torus.positions.size());
+    EXPECT_EQ(uvs->triangles, torus.triangles);
+    for (std::size_t i = 0; i < uvs->uvs.size(); ++i)
+        ASSERT_TRUE(uvs->uvs[i].isApprox(attributes.texcoords[i])) << i;
+    // Without TEXCOORD_0: nothing to bake into.
+    writeGlb(torus, {}, path);
+    EXPECT_FALSE(readUvMesh(path).has_value());
+}

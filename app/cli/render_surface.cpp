@@ -138,14 +138,10 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
                          "vertices, %zu triangles, %dx%d textures\n",
                          uvs->positions.size(), uvs->triangles.size(), bake.size, bake.size);
         } else {
-            const std::string& source = setup.mesh.file.format;
             if (uvs)
                 std::fprintf(stderr, "morphogen: the model's texture coordinates leave [0, 1] "
                                      "(a tiled or UDIM layout): written with the tiles' atlas "
                                      "instead\n");
-            else if (source == "glTF" || source == "GLB")
-                std::fprintf(stderr, "morphogen: a glTF model's own texture coordinates are not "
-                                     "read yet (an OBJ's are): written with the tiles' atlas\n");
             writeTexturedGlb(texturedSurface(setup.tiles, c), files.stage(out));
         }
         written.push_back(out);

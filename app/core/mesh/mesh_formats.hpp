@@ -15,9 +15,10 @@ namespace morphogen::mesh_formats {
 constexpr std::size_t kMaxMeshElements = std::size_t(1) << 26;
 
 // `uvs`, when given, receives the faces with their texture coordinates (left
-// empty when some face has none).
+// empty when some face, or glTF primitive, has none).
 TriangleMesh readObj(const std::string& path, const std::string& text, MeshFileInfo& info,
                      UvMesh* uvs = nullptr);
-TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info);
+TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info,
+                      UvMesh* uvs = nullptr);
 
 } // namespace morphogen::mesh_formats

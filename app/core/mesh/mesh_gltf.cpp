@@ -96,13 +96,15 @@ public:
                  std::to_string(accessors.size()));
         const tinygltf::Accessor& a = accessors[std::size_t(index)];
         const std::string name = what + " (accessor " + std::to_string(index) + ")";
+        const int components = type == TINYGLTF_TYPE_VEC3 ? 3 : type == TINYGLTF_TYPE_VEC2 ? 2 : 1;
         if (a.type != type)
             fail(name + " has the wrong type: want " +
-                 (type == TINYGLTF_TYPE_VEC3 ? std::string("VEC3") : std::string("SCALAR")));
-        const int components = type == TINYGLTF_TYPE_VEC3 ? 3 : 1;
+                 (components == 3   ? std::string("VEC3")
+                  : components == 2 ? std::string("VEC2")
+                                    : std::string("SCALAR")));
         const std::size_t size = componentSize(a.componentType);
         if (size == 0 ||
-            (type == TINYGLTF_TYPE_VEC3 && a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+            (components > 1 && a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
             fail(name + " has an unsupported component type " + std::to_string(a.componentType));
         if (a.sparse.isSparse)
             fail(name + " is sparse, which is not supported");
@@ -175,9 +177,12 @@ Matrix4 localTransform(const tinygltf::Node& node) {
     return a.matrix();
 }
 
+// Adds one primitive's triangles to `out`. With `texcoords`: its vertices'
+// TEXCOORD_0 appended in step with out.positions, or `texcoords` set to null
+// when it has none (the model then has no complete UV layout).
 void addPrimitive(const Reader& reader, const tinygltf::Model& model, int meshIndex,
                   std::size_t primitiveIndex, const Matrix4& transform, TriangleMesh& out,
-                  MeshFileInfo& info) {
+                  MeshFileInfo& info, std::vector<Eigen::Vector2f>*& texcoords) {
     const tinygltf::Primitive& prim =
         model.meshes[std::size_t(meshIndex)].primitives[primitiveIndex];
     const std::string what =
@@ -232,6 +237,20 @@ void addPrimitive(const Reader& reader, const tinygltf::Model& model, int meshIn
         out.triangles.size() + indices.size() > kMaxMeshElements)
         reader.fail("the scene places more than " + std::to_string(kMaxMeshElements) +
                     " vertices or triangles, more than accepted (simplify the model first)");
+    if (texcoords) {
+        const auto uv = prim.attributes.find("TEXCOORD_0");
+        if (uv == prim.attributes.end()) {
+            texcoords = nullptr;
+        } else {
+            const std::vector<double> st =
+                reader.accessor(uv->second, TINYGLTF_TYPE_VEC2, what + "'s TEXCOORD_0");
+            if (st.size() != 2 * count)
+                reader.fail(what + "'s TEXCOORD_0 has " + std::to_string(st.size() / 2) +
+                            " elements for " + std::to_string(count) + " vertices");
+            for (std::size_t i = 0; i < count; ++i)
+                texcoords->emplace_back(float(st[2 * i]), float(st[2 * i + 1]));
+        }
+    }
     const std::uint32_t base = std::uint32_t(out.positions.size());
     for (std::size_t i = 0; i < count; ++i) {
         const Eigen::Vector4d p =
@@ -267,7 +286,7 @@ void addPrimitive(const Reader& reader, const tinygltf::Model& model, int meshIn
 
 } // namespace
 
-TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info) {
+TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info, UvMesh* uvs) {
     info.format = binary ? "GLB" : "glTF";
     tinygltf::Model model;
     std::string err, warn;
@@ -291,6 +310,8 @@ TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info) 
 
     const Reader reader(path, model);
     TriangleMesh mesh;
+    std::vector<Eigen::Vector2f> texcoordValues;
+    std::vector<Eigen::Vector2f>* texcoords = uvs ? &texcoordValues : nullptr;
     const std::size_t nodeCount = model.nodes.size();
     // Nodes form trees (glTF forbids a node two parents): a node reached twice
     // is a cycle or a shared child, refused before it could multiply the work.
@@ -317,7 +338,7 @@ TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info) 
                                 std::to_string(model.meshes.size()));
                 for (std::size_t p = 0; p < model.meshes[std::size_t(node.mesh)].primitives.size();
                      ++p)
-                    addPrimitive(reader, model, node.mesh, p, transform, mesh, info);
+                    addPrimitive(reader, model, node.mesh, p, transform, mesh, info, texcoords);
             }
             // Reversed, so children come out of the stack in file order.
             for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
@@ -348,7 +369,14 @@ TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info) 
         // No scene and no nodes: the meshes as they are.
         for (std::size_t m = 0; m < model.meshes.size(); ++m)
             for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p)
-                addPrimitive(reader, model, int(m), p, Matrix4::Identity(), mesh, info);
+                addPrimitive(reader, model, int(m), p, Matrix4::Identity(), mesh, info, texcoords);
+    }
+    // Every primitive had its texture coordinates: glTF's vertices are
+    // already one per (position, texture coordinate), and its v runs down.
+    if (texcoords && texcoordValues.size() == mesh.positions.size() && !mesh.triangles.empty()) {
+        uvs->positions = mesh.positions;
+        uvs->uvs = std::move(texcoordValues);
+        uvs->triangles = mesh.triangles;
     }
     return mesh;
 }

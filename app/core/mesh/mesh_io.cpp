@@ -90,12 +90,16 @@ TriangleMesh readMeshFile(const std::string& path, MeshFileInfo* infoOut) {
 }
 
 std::optional<UvMesh> readUvMesh(const std::string& path) {
-    if (lowerExtension(path) != ".obj")
+    const std::string ext = lowerExtension(path);
+    if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
         return std::nullopt;
     readMeshFile(path); // the checks every reader shares, with their messages
     MeshFileInfo info;
     UvMesh uvs;
-    mesh_formats::readObj(path, readWholeFile(path), info, &uvs);
+    if (ext == ".obj")
+        mesh_formats::readObj(path, readWholeFile(path), info, &uvs);
+    else
+        mesh_formats::readGltf(path, ext == ".glb", info, &uvs);
     if (uvs.triangles.empty())
         return std::nullopt;
     return uvs;

@@ -62,8 +62,9 @@ struct UvMesh {
 };
 
 // The file's first texture coordinates, for baking into them: an OBJ whose
-// every face has them ("vt", flipped to glTF's v down). Nothing for a file
-// without them on every face, and for glTF files (not read yet). Throws
+// every face has them ("vt", flipped to glTF's v down), a glTF whose every
+// primitive has TEXCOORD_0 (node transforms applied to the positions, as
+// readMeshFile does). Nothing for a file without them everywhere. Throws
 // InputError as readMeshFile does.
 std::optional<UvMesh> readUvMesh(const std::string& path);
 
