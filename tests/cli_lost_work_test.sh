@@ -6,15 +6,10 @@
 set -u
 morphogen=$1
 work=$2
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 
-failures=0
-fail() { echo "FAIL: $*"; [ -f err.txt ] && sed 's/^/  stderr: /' err.txt; failures=$((failures + 1)); }
-ok() { echo "ok: $*"; }
-temporaries() { find . -name '.~*' | sort | tr '\n' ' '; }
-has() { grep -q -- "$1" err.txt || { fail "stderr lacks '$1'"; return 1; }; }
-unchanged() { for f in "$@"; do cmp -s "$f" "$f.old" || { fail "$f changed"; return 1; }; done; }
-keep() { for f in "$@"; do cp "$f" "$f.old"; done; }
+source "$here/cli_checks.sh"
 
 # --- a PNG over the file-size limit ------------------------------------------
 # OpenImageIO's PNG writer does not report the short write; the image is read

@@ -7,25 +7,10 @@
 set -u
 morphogen=$1
 work=$2
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 
-failures=0
-fail() { echo "FAIL: $*"; [ -f err.txt ] && sed 's/^/  stderr: /' err.txt; failures=$((failures + 1)); }
-ok() { echo "ok: $*"; }
-temporaries() { find . -name '.~*' | sort | tr '\n' ' '; }
-# run EXPECTED_RC ARGS...: morphogen with stderr in err.txt; fails on another exit code.
-run() {
-  local want=$1
-  shift
-  "$morphogen" "$@" >out.txt 2>err.txt
-  local rc=$?
-  [ "$rc" -eq "$want" ] || { fail "morphogen $*: exit $rc, want $want"; return 1; }
-}
-has() { grep -q -- "$1" err.txt || { fail "stderr lacks '$1'"; return 1; }; }
-unchanged() { # FILE...: each equal to its .old copy
-  for f in "$@"; do cmp -s "$f" "$f.old" || { fail "$f changed"; return 1; }; done
-}
-keep() { for f in "$@"; do cp "$f" "$f.old"; done; }
+source "$here/cli_checks.sh"
 
 small=(render --preset gs_coral --size 8 --steps 1 --no-settle --backend cpu)
 # 16 custom colour stops: the session is over 1 KiB, the 8 x 8 image well under.

@@ -201,6 +201,23 @@ TEST(SessionRun, BlowUpNamesTheStageAndTheStepRange) {
     }
 }
 
+namespace {
+
+// The message of the blow-up `s` runs into ("" and a failure when it does not).
+std::string blowUpMessage(const Session& s) {
+    SessionRun run(s, cpu(), 25);
+    try {
+        while (!run.finished())
+            run.advance(1000);
+    } catch (const BlowUpError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected a blow-up";
+    return "";
+}
+
+} // namespace
+
 TEST(SessionRun, ABlowUpFromPiledUpStrokesBlamesTheStrokesNotTheTimeStep) {
     // Twelve strokes adding v on one spot at a stable dt: v leaves Gray-Scott's
     // sane range because of the strokes, and a smaller dt would not help.
@@ -217,31 +234,16 @@ TEST(SessionRun, ABlowUpFromPiledUpStrokesBlamesTheStrokesNotTheTimeStep) {
         e.stroke = stroke;
         s.edits.push_back(e);
     }
-    SessionRun run(s, cpu(), 25);
-    try {
-        while (!run.finished())
-            run.advance(1000);
-        FAIL() << "expected a blow-up";
-    } catch (const BlowUpError& e) {
-        const std::string message = e.what();
-        EXPECT_NE(message.find("the time step is within its stability limit, so it is not the "
-                               "cause: 12 strokes put chemicals in"),
-                  std::string::npos)
-            << message;
-        EXPECT_EQ(message.find("--dt"), std::string::npos) << message;
-    }
+    const std::string message = blowUpMessage(s);
+    EXPECT_NE(message.find("the time step is within its stability limit, so it is not the "
+                           "cause: 12 strokes put chemicals in"),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(message.find("--dt"), std::string::npos) << message;
     // At an unstable dt the time step is still named first.
     s.dt = 5.0f;
-    SessionRun unstable(s, cpu(), 25);
-    try {
-        while (!unstable.finished())
-            unstable.advance(1000);
-        FAIL() << "expected a blow-up";
-    } catch (const BlowUpError& e) {
-        EXPECT_NE(std::string(e.what()).find("try a smaller time step such as --dt"),
-                  std::string::npos)
-            << e.what();
-    }
+    const std::string unstable = blowUpMessage(s);
+    EXPECT_NE(unstable.find("try a smaller time step such as --dt"), std::string::npos) << unstable;
 }
 
 // --- Live changes ----------------------------------------------------------------

@@ -142,41 +142,45 @@ void Designer::reportError(const std::string& message) {
 // --- actions --------------------------------------------------------------------
 
 void Designer::openPreset(const std::string& name) {
-    guarded("open preset", [&] {
-        Session preset = loadPreset(name);
-        m_settings.lastPreset = name;
-        if (preset.surface.active()) {
-            openSurfaceSession(std::move(preset), "", 0);
-            return;
-        }
-        m_doc.open(std::move(preset));
-        m_surface.reset();
-        m_replayTo = 0;
-        m_settings.lastPreset = name;
-        m_settings.lastSession.clear();
-        m_viewFramed = false;
-        m_displayChemical = -1;
-        m_status = "opened preset " + name;
-    });
+    guarded("open preset", [&] { openPresetOrThrow(name); });
+}
+
+void Designer::openPresetOrThrow(const std::string& name) {
+    Session preset = loadPreset(name);
+    m_settings.lastPreset = name;
+    if (preset.surface.active()) {
+        openSurfaceSession(std::move(preset), "", 0);
+        return;
+    }
+    m_doc.open(std::move(preset));
+    m_surface.reset();
+    m_replayTo = 0;
+    m_settings.lastPreset = name;
+    m_settings.lastSession.clear();
+    m_viewFramed = false;
+    m_displayChemical = -1;
+    m_status = "opened preset " + name;
 }
 
 void Designer::openSessionFile(const std::string& path) {
-    guarded("open", [&] {
-        Session session = loadSessionFile(path);
-        const long long steps = session.steps;
-        if (session.surface.active()) {
-            openSurfaceSession(std::move(session), path, steps);
-            return;
-        }
-        m_doc.open(std::move(session), path);
-        m_surface.reset();
-        m_replayTo = steps;
-        m_settings.lastSession = fs::absolute(path).string();
-        m_settings.lastFolder = fs::absolute(path).parent_path().string();
-        m_viewFramed = false;
-        m_displayChemical = -1;
-        m_status = "opened " + path;
-    });
+    guarded("open", [&] { openSessionFileOrThrow(path); });
+}
+
+void Designer::openSessionFileOrThrow(const std::string& path) {
+    Session session = loadSessionFile(path);
+    const long long steps = session.steps;
+    if (session.surface.active()) {
+        openSurfaceSession(std::move(session), path, steps);
+        return;
+    }
+    m_doc.open(std::move(session), path);
+    m_surface.reset();
+    m_replayTo = steps;
+    m_settings.lastSession = fs::absolute(path).string();
+    m_settings.lastFolder = fs::absolute(path).parent_path().string();
+    m_viewFramed = false;
+    m_displayChemical = -1;
+    m_status = "opened " + path;
 }
 
 void Designer::saveSession(const std::string& path) {
@@ -364,11 +368,9 @@ void Designer::openRemembered() {
         if (!session.empty()) {
             if (!fs::exists(session))
                 throw InputError(session + ": not found");
-            loadSessionFile(session); // checked here: openSessionFile would report it
-            openSessionFile(session);
+            openSessionFileOrThrow(session);
         } else if (!preset.empty()) {
-            loadPreset(preset);
-            openPreset(preset);
+            openPresetOrThrow(preset);
         } else {
             openPreset(kDefaultPreset);
         }

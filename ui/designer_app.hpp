@@ -207,6 +207,9 @@ private:
     void autosave(bool force);
     // designer.json's session or preset, else the default with a notice.
     void openRemembered();
+    // The two openers' work; the public ones report a throw as an error.
+    void openPresetOrThrow(const std::string& name);
+    void openSessionFileOrThrow(const std::string& path);
     void writeScreenshot();
     void writeRecordedFrame();
     // Runs `f`, reporting an exception as an error instead of leaving the frame.

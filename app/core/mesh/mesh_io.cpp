@@ -47,7 +47,10 @@ std::string point(const Eigen::Vector3f& p) {
 
 } // namespace
 
-TriangleMesh readMeshFile(const std::string& path, MeshFileInfo* infoOut) {
+namespace {
+
+// readMeshFile's work, with the texture coordinates when `uvs` is given.
+TriangleMesh readMeshFileWithUvs(const std::string& path, MeshFileInfo* infoOut, UvMesh* uvs) {
     MeshFileInfo info;
     info.path = path;
     std::error_code ec;
@@ -64,8 +67,8 @@ TriangleMesh readMeshFile(const std::string& path, MeshFileInfo* infoOut) {
     if (fs::file_size(path, ec) == 0 && !ec)
         throw InputError(path + ": the file is empty");
 
-    TriangleMesh mesh = ext == ".obj" ? mesh_formats::readObj(path, readWholeFile(path), info)
-                                      : mesh_formats::readGltf(path, ext == ".glb", info);
+    TriangleMesh mesh = ext == ".obj" ? mesh_formats::readObj(path, readWholeFile(path), info, uvs)
+                                      : mesh_formats::readGltf(path, ext == ".glb", info, uvs);
 
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
         for (std::uint32_t v : mesh.triangles[t])
@@ -89,17 +92,18 @@ TriangleMesh readMeshFile(const std::string& path, MeshFileInfo* infoOut) {
     return mesh;
 }
 
+} // namespace
+
+TriangleMesh readMeshFile(const std::string& path, MeshFileInfo* infoOut) {
+    return readMeshFileWithUvs(path, infoOut, nullptr);
+}
+
 std::optional<UvMesh> readUvMesh(const std::string& path) {
     const std::string ext = lowerExtension(path);
     if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
-        return std::nullopt;
-    readMeshFile(path); // the checks every reader shares, with their messages
-    MeshFileInfo info;
+        return std::nullopt; // a generated sample ("sample:torus") has no file
     UvMesh uvs;
-    if (ext == ".obj")
-        mesh_formats::readObj(path, readWholeFile(path), info, &uvs);
-    else
-        mesh_formats::readGltf(path, ext == ".glb", info, &uvs);
+    readMeshFileWithUvs(path, nullptr, &uvs);
     if (uvs.triangles.empty())
         return std::nullopt;
     return uvs;
