@@ -3,7 +3,7 @@
 // files, images, command-line flags), written down once. Readers and flags
 // check values against these and refuse others with an InputError (exit 2)
 // naming the field or flag and the accepted range; products and sums are
-// computed in 64 bits before they are compared. README.md ("Limits") lists
+// computed in 64 bits before they are compared. docs/limits.md lists
 // them for users; keep the two in step.
 
 #include <cstdint>
