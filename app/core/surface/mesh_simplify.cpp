@@ -1,15 +1,21 @@
 #include "core/surface/mesh_simplify.hpp"
 
+#include <algorithm>
 #include <cstdint>
+#include <numeric>
 #include <vector>
 
 #include <meshoptimizer.h>
 
 #include "core/mesh/mesh_check.hpp"
+#include "core/surface/mesh_collapse.hpp"
 
 namespace morphogen {
 
 namespace {
+
+// A closed part cannot be fewer than the 4 triangles of a tetrahedron.
+constexpr std::size_t kMinTrianglesPerPart = 4;
 
 struct Topology {
     std::size_t components = 0;
@@ -50,6 +56,89 @@ TriangleMesh compacted(const TriangleMesh& mesh, const std::vector<std::uint32_t
     return out;
 }
 
+// The triangles of each connected component (sharing vertices), in the order
+// of their first triangle.
+std::vector<std::vector<std::uint32_t>> componentTriangles(const TriangleMesh& mesh) {
+    std::vector<std::uint32_t> parent(mesh.positions.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto find = [&](std::uint32_t v) {
+        while (parent[v] != v)
+            v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (const auto& t : mesh.triangles)
+        for (int k = 1; k < 3; ++k) {
+            const std::uint32_t a = find(t[0]), b = find(t[k]);
+            if (a != b)
+                parent[std::max(a, b)] = std::min(a, b);
+        }
+    std::vector<std::uint32_t> slot(mesh.positions.size(), UINT32_MAX);
+    std::vector<std::vector<std::uint32_t>> out;
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+        const std::uint32_t root = find(mesh.triangles[t][0]);
+        if (slot[root] == UINT32_MAX) {
+            slot[root] = std::uint32_t(out.size());
+            out.emplace_back();
+        }
+        out[slot[root]].push_back(t);
+    }
+    return out;
+}
+
+TriangleMesh subMesh(const TriangleMesh& mesh, const std::vector<std::uint32_t>& triangles) {
+    std::vector<std::uint32_t> indices;
+    indices.reserve(3 * triangles.size());
+    for (std::uint32_t t : triangles)
+        indices.insert(indices.end(), mesh.triangles[t].begin(), mesh.triangles[t].end());
+    return compacted(mesh, indices);
+}
+
+// One connected component towards its target.
+TriangleMesh simplifyComponent(const TriangleMesh& mesh, std::size_t targetTriangles,
+                               SimplifyStats& s) {
+    if (mesh.triangles.size() <= targetTriangles)
+        return mesh;
+    const Topology before = topologyOf(mesh);
+    std::vector<std::uint32_t> indices;
+    indices.reserve(3 * mesh.triangles.size());
+    for (const auto& t : mesh.triangles)
+        indices.insert(indices.end(), t.begin(), t.end());
+    std::vector<std::uint32_t> out(indices.size());
+
+    double target = double(targetTriangles);
+    for (int attempt = 1; attempt <= 6 && target < double(mesh.triangles.size());
+         ++attempt, target *= 1.5) {
+        ++s.attempts;
+        // target_error is relative to the component's extent: 1 means "no
+        // bound", the triangle budget alone decides where to stop.
+        const std::size_t count =
+            meshopt_simplify(out.data(), indices.data(), indices.size(), mesh.positions[0].data(),
+                             mesh.positions.size(), sizeof(Eigen::Vector3f),
+                             3 * std::size_t(target), 1.0f, meshopt_SimplifyLockBorder, nullptr);
+        TriangleMesh result =
+            compacted(mesh, std::vector<std::uint32_t>(out.begin(), out.begin() + count));
+        if (!result.triangles.empty() && topologyOf(result) == before)
+            return result;
+    }
+    // meshoptimizer does not test the link condition: round a scan's small
+    // handles it makes non-manifold edges and duplicate triangles at any
+    // budget. CGAL's collapse never does, at a few times the cost.
+    TriangleMesh result = collapseKeepingTopology(mesh, targetTriangles);
+    if (result.triangles.size() < mesh.triangles.size() && topologyOf(result) == before) {
+        ++s.linkConditionComponents;
+        return result;
+    }
+    ++s.componentsKept;
+    return mesh;
+}
+
+void append(TriangleMesh& to, const TriangleMesh& part) {
+    const auto offset = std::uint32_t(to.positions.size());
+    to.positions.insert(to.positions.end(), part.positions.begin(), part.positions.end());
+    for (const auto& t : part.triangles)
+        to.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+}
+
 } // namespace
 
 TriangleMesh simplifyForTiles(const TriangleMesh& mesh, std::size_t targetTriangles,
@@ -61,32 +150,27 @@ TriangleMesh simplifyForTiles(const TriangleMesh& mesh, std::size_t targetTriang
     if (mesh.triangles.size() <= targetTriangles)
         return mesh;
 
-    const Topology before = topologyOf(mesh);
-    std::vector<std::uint32_t> indices;
-    indices.reserve(3 * mesh.triangles.size());
-    for (const auto& t : mesh.triangles)
-        indices.insert(indices.end(), t.begin(), t.end());
-    std::vector<std::uint32_t> out(indices.size());
-
-    double target = double(targetTriangles);
-    for (int attempt = 1; attempt <= 6 && target < double(mesh.triangles.size());
-         ++attempt, target *= 1.5) {
-        s.attempts = attempt;
-        // target_error is relative to the mesh's extent: 1 means "no bound", the
-        // triangle budget alone decides where to stop.
-        const std::size_t count =
-            meshopt_simplify(out.data(), indices.data(), indices.size(), mesh.positions[0].data(),
-                             mesh.positions.size(), sizeof(Eigen::Vector3f),
-                             3 * std::size_t(target), 1.0f, meshopt_SimplifyLockBorder, nullptr);
-        TriangleMesh result =
-            compacted(mesh, std::vector<std::uint32_t>(out.begin(), out.begin() + count));
-        if (!result.triangles.empty() && topologyOf(result) == before) {
-            s.trianglesAfter = result.triangles.size();
-            s.simplified = true;
-            return result;
+    const auto components = componentTriangles(mesh);
+    s.components = components.size();
+    TriangleMesh result;
+    if (components.size() == 1) {
+        result = simplifyComponent(mesh, targetTriangles, s);
+    } else {
+        // Each part its share of the budget by area, simplified on its own: one
+        // run over parts far apart measures every collapse against the whole
+        // extent and crushes the small parts (or breaks them and keeps all).
+        const double total = surfaceArea(mesh);
+        for (const auto& triangles : components) {
+            const TriangleMesh part = subMesh(mesh, triangles);
+            const double share = total > 0 ? surfaceArea(part) / total : 0.0;
+            const auto target =
+                std::max<std::size_t>(kMinTrianglesPerPart, std::size_t(share * targetTriangles));
+            append(result, simplifyComponent(part, target, s));
         }
     }
-    return mesh;
+    s.trianglesAfter = result.triangles.size();
+    s.simplified = s.trianglesAfter < s.trianglesBefore;
+    return result;
 }
 
 } // namespace morphogen

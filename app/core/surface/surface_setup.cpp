@@ -40,6 +40,29 @@ LoadedMesh loadSurfaceMesh(const SurfaceSpec& spec, const std::string& baseDir) 
     return loadMesh(path.string(), repair);
 }
 
+namespace {
+
+// Says honestly what the tiles were laid on: a mesh too tangled to simplify
+// is tiled whole (slowly), and a reader of the log should see that.
+std::string simplificationSummary(const SurfaceTiles& tiles) {
+    const SimplifyStats& s = tiles.simplifyStats;
+    std::ostringstream os;
+    if (!s.simplified) {
+        os << "tiles laid on all of it"
+           << (s.componentsKept > 0 ? " (no simplification kept its topology)" : "");
+        return os.str();
+    }
+    os << "simplified to " << tiles.simplified.triangles.size() << " triangles";
+    if (s.components > 1)
+        os << " (" << s.components << " parts, each by its share of the area)";
+    if (s.componentsKept > 0)
+        os << ", " << s.componentsKept << (s.componentsKept == 1 ? " part" : " parts")
+           << " kept whole (no simplification kept its topology)";
+    return os.str();
+}
+
+} // namespace
+
 std::string SurfaceSetup::describe() const {
     std::ostringstream os;
     const Atlas& atlas = *tiles.atlas;
@@ -47,9 +70,9 @@ std::string SurfaceSetup::describe() const {
     if (mesh.repair.changed())
         os << "repaired (" << repairSummary(mesh.repair) << "), ";
     os << mesh.mesh.triangles.size() << " triangles, area " << tiles.surfaceArea
-       << " (mesh units^2); simplified to " << tiles.simplified.triangles.size() << " triangles -> "
-       << atlas.tileCount() << " tiles of " << atlas.tileSize() << "x" << atlas.tileSize()
-       << " texels in a " << atlas.width() << "x" << atlas.height() << " atlas; " << unitsPerWorld
+       << " (mesh units^2); " << simplificationSummary(tiles) << " -> " << atlas.tileCount()
+       << " tiles of " << atlas.tileSize() << "x" << atlas.tileSize() << " texels in a "
+       << atlas.width() << "x" << atlas.height() << " atlas; " << unitsPerWorld
        << " model units per mesh unit, texels " << texelUnits << " units on average; built in "
        << seconds << " s";
     return os.str();

@@ -9,6 +9,7 @@
 
 #include "core/domain/atlas.hpp"
 #include "core/mesh/triangle_mesh.hpp"
+#include "core/surface/mesh_simplify.hpp"
 
 namespace morphogen {
 
@@ -23,7 +24,8 @@ struct TileOptions {
 // point, edge midpoint), each quad an n x n tile of the atlas. Everything geometric is in
 // the mesh's own (world) units.
 struct SurfaceTiles {
-    TriangleMesh simplified; // the mesh the tiles were laid on
+    TriangleMesh simplified;     // the mesh the tiles were laid on
+    SimplifyStats simplifyStats; // how it was simplified (simplifyForTiles)
     // The quads' corner points: the simplified mesh's vertices, then one point
     // per edge (its midpoint), then one per triangle (its split point).
     std::vector<Eigen::Vector3f> quadVertices;

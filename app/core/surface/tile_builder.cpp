@@ -144,6 +144,7 @@ SurfaceTiles buildSurfaceTiles(const TriangleMesh& full, const TileOptions& opti
         improveForTiles(simplified, projector);
     }
     SurfaceTiles out = splitIntoTiles(simplified, options.tileSize);
+    out.simplifyStats = stats;
     report("projection", 0);
     computeSurfaceGeometry(out, full, projector, [&](double f) { report("projection", f); });
     report("projection", 1);
