@@ -184,12 +184,23 @@ string(FIND "${last_stderr}" "duplicate triangles removed" at)
 if(at EQUAL -1 OR NOT EXISTS "${WORK}/scan_torus.png")
   message(SEND_ERROR "render of a torus with duplicated faces: want it repaired and rendered: ${last_stderr}")
 endif()
-# A preset's drops are placed on its own model (the blob): on another model they
-# would paint nothing, so the run is refused, naming the drop.
-run(2 "misses the surface" render --preset surface_drops_blob --mesh sample:torus ${small} --out missed.png)
-string(FIND "${last_stderr}" "edit 1 (step 0), a stroke at (" at)
+# Drops in "space": "model" (the preset's, fractions of the bounding box) land
+# on any model; drops in "space": "surface" placed for another model would
+# paint nothing, so that run is refused, naming the drop.
+run(0 "" render --preset surface_drops_blob --mesh sample:torus ${small} --out drops_torus.png)
+file(READ "${WORK}/drops_torus.json" dropsSession)
+string(JSON space GET "${dropsSession}" edits 0 stroke space)
+if(NOT space STREQUAL "model")
+  message(SEND_ERROR "surface_drops_blob on a torus: want its drops kept in model space, got ${space}")
+endif()
+string(JSON dropsSession SET "${dropsSession}" edits 0 stroke space "\"surface\"")
+string(JSON dropsSession SET "${dropsSession}" edits 0 stroke points "[[3, 3, 3]]")
+string(JSON dropsSession SET "${dropsSession}" edits 0 stroke radius "0.1")
+file(WRITE "${WORK}/misplaced_drops.json" "${dropsSession}")
+run(2 "misses the surface" render --session misplaced_drops.json ${small} --out missed.png)
+string(FIND "${last_stderr}" "edit 1 (step 0), a stroke at (3, 3, 3)" at)
 if(at EQUAL -1)
-  message(SEND_ERROR "surface_drops_blob on a torus: want the first drop named: ${last_stderr}")
+  message(SEND_ERROR "a surface drop off the torus: want the first drop named: ${last_stderr}")
 endif()
 # Two parts 10,000 units apart: each is a speck in the framed screenshot, which says so.
 file(WRITE "${WORK}/far.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 10000 0 0\nv 10001 0 0\nv 10000 1 0\nv 10000 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n")

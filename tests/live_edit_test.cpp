@@ -388,6 +388,71 @@ TEST(LiveEdit, SurfaceStrokesLandOnTheMeshAndReplay) {
     EXPECT_EQ(test::maxAbsDifference(replay.state, run.state()), 0.0f);
 }
 
+// A stroke given by fractions of the model's bounding box lands on the mesh's
+// nearest point on any model, with its radius a fraction of the diagonal; the
+// session keeps the fractions.
+TEST(LiveEdit, ModelSpaceStrokesFitAnyModel) {
+    const nlohmann::json stroke = {{"step", 0},
+                                   {"stroke",
+                                    {{"mode", "add"},
+                                     {"chemical", "b"},
+                                     {"value", 1.0},
+                                     {"space", "model"},
+                                     {"points", {{0.5, 1.0, 0.5}}},
+                                     {"radius", 0.05}}}};
+    for (const char* mesh : {"sample:sphere", "sample:torus"}) {
+        Session s = loadPreset("turk_small_spots");
+        s.length = 60;
+        s.surface.mesh = mesh;
+        s.surface.tiles = 120;
+        s.surface.tileSize = 4;
+        nlohmann::json j = sessionToJson(s);
+        j["edits"] = {stroke};
+        Session placed = fromJson(j);
+        ASSERT_TRUE(placed.edits[0].stroke && placed.edits[0].stroke->modelBox);
+        const SurfaceSetup setup = setUpSurface(placed);
+        const Bounds box = boundsOf(setup.mesh.mesh.positions);
+        const StrokeSpec& onMesh = *placed.edits[0].stroke;
+        ASSERT_EQ(onMesh.surfacePoints.size(), 1u);
+        const Eigen::Vector3f p(float(onMesh.surfacePoints[0][0]),
+                                float(onMesh.surfacePoints[0][1]),
+                                float(onMesh.surfacePoints[0][2]));
+        // The middle of the box's top face (y = max) projected: the surface's top.
+        EXPECT_NEAR(p.y(), box.max.y(), 0.02f * box.diagonal()) << mesh;
+        EXPECT_NEAR(onMesh.radius, 0.05 * box.diagonal(), 1e-6) << mesh;
+        const nlohmann::json saved = sessionToJson(placed);
+        EXPECT_EQ(saved["edits"][0]["stroke"]["space"], "model");
+        EXPECT_EQ(saved["edits"][0]["stroke"]["points"][0][1], 1.0);
+        EXPECT_EQ(saved["edits"][0]["stroke"]["radius"], 0.05);
+    }
+}
+
+TEST(LiveEdit, ModelSpaceStrokesOutsideTheBoxAreRefused) {
+    Session s = loadPreset("turk_small_spots");
+    s.surface.mesh = "sample:sphere";
+    nlohmann::json j = sessionToJson(s);
+    const auto refused = [&](const nlohmann::json& points, double radius) {
+        j["edits"] = {{{"step", 0},
+                       {"stroke",
+                        {{"mode", "add"},
+                         {"chemical", "b"},
+                         {"space", "model"},
+                         {"points", points},
+                         {"radius", radius}}}}};
+        try {
+            fromJson(j);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_NE(refused({{0.5, 1.5, 0.5}}, 0.1).find("fractions of the model's bounding box"),
+              std::string::npos);
+    EXPECT_NE(refused({{0.5, 0.5}}, 0.1).find("[x, y, z] fractions"), std::string::npos);
+    EXPECT_NE(refused({{0.5, 0.5, 0.5}}, 0.0).find("radius"), std::string::npos);
+    EXPECT_EQ(refused({{0.5, 0.5, 0.5}}, 0.1), "accepted");
+}
+
 TEST(LiveEdit, StrokesMustMatchTheSessionsSpace) {
     Session flat = smallCoral();
     LiveEdit e;

@@ -98,13 +98,17 @@ StrokeSpec strokeFromJson(const FieldReader& edit, const json& block,
         reader.failField("param", "is only used by mode 'paint'");
     }
     const std::string space = reader.string("space", "canvas");
-    if (space != "canvas" && space != "surface")
-        reader.failField("space", "is '" + space + "', accepted: canvas, surface");
-    s.surface = space == "surface";
+    if (space != "canvas" && space != "surface" && space != "model")
+        reader.failField("space", "is '" + space + "', accepted: canvas, surface, model");
+    s.surface = space != "canvas";
     s.localized = reader.boolean("localized", false);
     if (s.localized && !s.surface)
-        reader.failField("localized", "needs \"space\": \"surface\": localized re-growth runs "
-                                      "on a mesh's tiles, not on the canvas");
+        reader.failField("localized", "needs \"space\": \"surface\" or \"model\": localized "
+                                      "re-growth runs on a mesh's tiles, not on the canvas");
+    if (space == "model") {
+        readModelStrokePlacement(reader, s);
+        return s;
+    }
     const json* points = reader.find("points");
     const std::string expected =
         s.surface ? "must be a non-empty array of [x, y, z] points on the mesh (its coordinates)"
@@ -131,6 +135,37 @@ StrokeSpec strokeFromJson(const FieldReader& edit, const json& block,
     s.radius = reader.number("radius", s.radius, 1e-9, s.surface ? kMaxLength : 1.0);
     return s;
 }
+
+} // namespace
+
+void readModelStrokePlacement(const FieldReader& reader, StrokeSpec& stroke) {
+    stroke.surface = true;
+    stroke.modelBox = true;
+    const json* points = reader.find("points");
+    const std::string expected = "must be a non-empty array of [x, y, z] fractions of the model's "
+                                 "bounding box (each 0..1; [0.5, 1, 0.5] is the middle of its top)";
+    if (!points || !points->is_array() || points->empty() || points->size() > kMaxStrokePoints)
+        reader.failField("points", expected);
+    for (const json& p : *points) {
+        bool ok = p.is_array() && p.size() == 3;
+        for (std::size_t k = 0; ok && k < 3; ++k)
+            ok = p[k].is_number() && p[k].get<double>() >= 0.0 && p[k].get<double>() <= 1.0;
+        if (!ok)
+            reader.failField("points", expected + ", got " + p.dump());
+        stroke.boxPoints.push_back({p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
+    }
+    if (!reader.find("radius"))
+        reader.failField("radius", "is missing (a fraction of the model's bounding-box diagonal, "
+                                   "(0, 1])");
+    stroke.boxRadius = reader.number("radius", 0.0, 0.0, 1.0);
+    if (!(stroke.boxRadius > 0.0))
+        reader.failField("radius", "is 0: a stroke needs a radius > 0 (a fraction of the model's "
+                                   "bounding-box diagonal, (0, 1])");
+    // Placed on the mesh when the surface is set up; until then nothing to paint.
+    stroke.radius = 0;
+}
+
+namespace {
 
 std::array<double, 3> vectorField(const FieldReader& reader, const char* name,
                                   const std::string& expected) {
@@ -177,7 +212,12 @@ json strokeToJson(const StrokeSpec& s) {
     if (s.localized)
         j["localized"] = true;
     j["points"] = json::array();
-    if (s.surface) {
+    if (s.modelBox) {
+        j["space"] = "model";
+        j["radius"] = s.boxRadius;
+        for (const auto& p : s.boxPoints)
+            j["points"].push_back({p[0], p[1], p[2]});
+    } else if (s.surface) {
         j["space"] = "surface";
         for (const auto& p : s.surfacePoints)
             j["points"].push_back({p[0], p[1], p[2]});
@@ -194,7 +234,8 @@ bool StrokeSpec::operator==(const StrokeSpec& o) const {
     return mode == o.mode && chemical == o.chemical && param == o.param && value == o.value &&
            seed == o.seed && points == o.points && radius == o.radius && falloff == o.falloff &&
            continues == o.continues && surface == o.surface && surfacePoints == o.surfacePoints &&
-           localized == o.localized;
+           localized == o.localized && modelBox == o.modelBox && boxPoints == o.boxPoints &&
+           boxRadius == o.boxRadius;
 }
 
 bool LiveEdit::operator==(const LiveEdit& o) const {

@@ -37,6 +37,15 @@ struct StrokeSpec {
     // of the path (straight-line distance from their centres) are the cells.
     bool surface = false;
     std::vector<std::array<double, 3>> surfacePoints;
+    // A stroke placed by the model's bounding box ("space": "model", also a
+    // surface stroke): boxPoints are fractions 0..1 of the box along x, y and
+    // z, boxRadius a fraction of its diagonal. Setting up the surface puts
+    // surfacePoints at the mesh's points nearest to them and radius in mesh
+    // units (placeModelStrokes), so the session's strokes fit any model; the
+    // session keeps the fractions.
+    bool modelBox = false;
+    std::vector<std::array<double, 3>> boxPoints;
+    double boxRadius = 0;
     double radius = 0.02; // fraction of the canvas width
     double falloff = 0.5; // outer fraction of the radius that ramps down to 0
     // The stroke goes on from the previous stroke edit (a drag recorded piece
@@ -57,6 +66,12 @@ struct StrokeSpec {
 // The stretch factors a deformation accepts (below 1 compresses).
 constexpr double kMinDeformFactor = 0.5;
 constexpr double kMaxDeformFactor = 4.0;
+
+// Reads a "space": "model" stroke's "points" (fractions of the model's
+// bounding box, each 0..1) and "radius" (a fraction of its diagonal, (0, 1])
+// into `stroke`, which becomes a surface stroke placed by the box. Fails the
+// field (InputError naming it and what is accepted) otherwise.
+void readModelStrokePlacement(const FieldReader& reader, StrokeSpec& stroke);
 
 // A change made while the session ran (the designer's sliders and brushes),
 // recorded so that the session reproduces the run: before session step

@@ -36,6 +36,44 @@ std::string joined(const std::vector<std::string>& names) {
     return list;
 }
 
+// A canvas or surface stroke's "points" and "radius".
+void readPointsAndRadius(const FieldReader& reader, StrokeSpec& stroke) {
+    const json* points = reader.find("points");
+    const std::string expected =
+        stroke.surface
+            ? "must be a non-empty array of [x, y, z] points on the mesh (its coordinates)"
+            : "must be a non-empty array of [x, y] points on the canvas (fractions 0..1)";
+    if (!points || !points->is_array() || points->empty() || points->size() > kMaxStrokePoints)
+        reader.failField("points", expected);
+    for (const json& p : *points) {
+        if (stroke.surface) {
+            bool ok = p.is_array() && p.size() == 3;
+            for (std::size_t k = 0; ok && k < 3; ++k)
+                ok = p[k].is_number() && std::abs(p[k].get<double>()) <= kMaxLength;
+            if (!ok)
+                reader.failField("points", expected + ", got " + p.dump());
+            stroke.surfacePoints.push_back(
+                {p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
+            continue;
+        }
+        const bool ok = p.is_array() && p.size() == 2 && p[0].is_number() && p[1].is_number() &&
+                        p[0].get<double>() >= 0.0 && p[0].get<double>() <= 1.0 &&
+                        p[1].get<double>() >= 0.0 && p[1].get<double>() <= 1.0;
+        if (!ok)
+            reader.failField("points", expected + ", got " + p.dump() +
+                                           (p.is_array() ? " (outside the canvas)" : ""));
+        stroke.points.push_back({p[0].get<double>(), p[1].get<double>()});
+    }
+    const double maxRadius = stroke.surface ? kMaxLength : 1.0;
+    const std::string units =
+        stroke.surface ? "the mesh's units" : "a fraction of the canvas width, (0, 1]";
+    if (!reader.find("radius"))
+        reader.failField("radius", "is missing (" + units + ")");
+    stroke.radius = reader.number("radius", 0.0, 0.0, maxRadius);
+    if (!(stroke.radius > 0.0))
+        reader.failField("radius", "is 0: a stroke needs a radius > 0 (" + units + ")");
+}
+
 } // namespace
 
 void addWatercolourStrokes(const FieldReader& top, const json& array, Session& session) {
@@ -58,45 +96,17 @@ void addWatercolourStrokes(const FieldReader& top, const json& array, Session& s
         stroke.mode = BrushMode::Add;
         const long long step = reader.integer("step", 0, 0, kMaxSteps);
         const std::string space = reader.string("space", "canvas");
-        if (space != "canvas" && space != "surface")
+        if (space != "canvas" && space != "surface" && space != "model")
             reader.failField("space", "is '" + space +
                                           "', accepted: canvas, surface (a model's "
-                                          "surface, points in the mesh's coordinates)");
-        stroke.surface = space == "surface";
-        const json* points = reader.find("points");
-        const std::string expected =
-            stroke.surface
-                ? "must be a non-empty array of [x, y, z] points on the mesh (its coordinates)"
-                : "must be a non-empty array of [x, y] points on the canvas (fractions 0..1)";
-        if (!points || !points->is_array() || points->empty() || points->size() > kMaxStrokePoints)
-            reader.failField("points", expected);
-        for (const json& p : *points) {
-            if (stroke.surface) {
-                bool ok = p.is_array() && p.size() == 3;
-                for (std::size_t k = 0; ok && k < 3; ++k)
-                    ok = p[k].is_number() && std::abs(p[k].get<double>()) <= kMaxLength;
-                if (!ok)
-                    reader.failField("points", expected + ", got " + p.dump());
-                stroke.surfacePoints.push_back(
-                    {p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
-                continue;
-            }
-            const bool ok = p.is_array() && p.size() == 2 && p[0].is_number() && p[1].is_number() &&
-                            p[0].get<double>() >= 0.0 && p[0].get<double>() <= 1.0 &&
-                            p[1].get<double>() >= 0.0 && p[1].get<double>() <= 1.0;
-            if (!ok)
-                reader.failField("points", expected + ", got " + p.dump() +
-                                               (p.is_array() ? " (outside the canvas)" : ""));
-            stroke.points.push_back({p[0].get<double>(), p[1].get<double>()});
-        }
-        const double maxRadius = stroke.surface ? kMaxLength : 1.0;
-        const std::string units =
-            stroke.surface ? "the mesh's units" : "a fraction of the canvas width, (0, 1]";
-        if (!reader.find("radius"))
-            reader.failField("radius", "is missing (" + units + ")");
-        stroke.radius = reader.number("radius", 0.0, 0.0, maxRadius);
-        if (!(stroke.radius > 0.0))
-            reader.failField("radius", "is 0: a stroke needs a radius > 0 (" + units + ")");
+                                          "surface, points in the mesh's coordinates), model "
+                                          "(fractions of the model's bounding box)");
+        stroke.surface = space != "canvas";
+        stroke.modelBox = space == "model";
+        if (stroke.modelBox)
+            readModelStrokePlacement(reader, stroke);
+        else
+            readPointsAndRadius(reader, stroke);
         stroke.falloff = reader.number("falloff", stroke.falloff, 0.0, 1.0);
         const double water = reader.number("water", 1.0, 0.0, kMaxWater);
         const double amount = reader.number("amount", 0.5, 0.0, kMaxWater);

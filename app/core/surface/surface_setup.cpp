@@ -13,6 +13,7 @@
 #include "core/mesh/mesh_report.hpp"
 #include "core/mesh/mesh_samples.hpp"
 #include "core/sim/stroke_brush.hpp"
+#include "core/surface/mesh_projector.hpp"
 #include "core/surface/surface_weights.hpp"
 #include "core/surface/tile_builder.hpp"
 
@@ -80,6 +81,30 @@ std::string SurfaceSetup::describe() const {
 
 namespace {
 
+// Strokes placed by the model's bounding box land on the mesh's points
+// nearest to them, their radius a fraction of its diagonal.
+void placeModelStrokes(Session& session, const TriangleMesh& mesh) {
+    const auto byBox = [](const LiveEdit& e) { return e.stroke && e.stroke->modelBox; };
+    if (std::none_of(session.edits.begin(), session.edits.end(), byBox))
+        return;
+    const Bounds box = boundsOf(mesh.positions);
+    const MeshProjector projector(mesh);
+    for (LiveEdit& e : session.edits) {
+        if (!byBox(e))
+            continue;
+        StrokeSpec& stroke = *e.stroke;
+        stroke.surfacePoints.clear();
+        for (const auto& f : stroke.boxPoints) {
+            const Eigen::Vector3f inBox =
+                box.min +
+                (box.max - box.min).cwiseProduct(Eigen::Vector3d(f[0], f[1], f[2]).cast<float>());
+            const Eigen::Vector3f p = projector.closest(inBox).position;
+            stroke.surfacePoints.push_back({p.x(), p.y(), p.z()});
+        }
+        stroke.radius = stroke.boxRadius * box.diagonal();
+    }
+}
+
 // A stroke or drop placed for another model (a preset's on its own mesh, run
 // on the artist's) would paint nothing and say nothing: refused, naming it.
 void requireStrokesOnSurface(const Session& session, const Atlas& atlas, const TriangleMesh& mesh,
@@ -103,8 +128,10 @@ void requireStrokesOnSurface(const Session& session, const Atlas& atlas, const T
            << ", misses the surface: its nearest point is " << nearest << " away (the model spans ("
            << box.min.x() << ", " << box.min.y() << ", " << box.min.z() << ") to (" << box.max.x()
            << ", " << box.max.y() << ", " << box.max.z()
-           << ")); strokes and drops are placed in the coordinates of the model they were "
-              "made on: place them on this one, or leave them out";
+           << ")); strokes and drops in \"space\": \"surface\" are in the coordinates of the "
+              "model they were made on: place them on this one, give them in \"space\": "
+              "\"model\" (fractions of the model's bounding box, which fit any model), or "
+              "leave them out";
         throw InputError(os.str());
     }
 }
@@ -163,6 +190,7 @@ SurfaceSetup setUpSurface(Session& session,
     setup.texelUnits = used ? std::sqrt(texelArea / double(used)) * setup.unitsPerWorld : 0;
     useAtlas(session, setup.tiles.atlas, setup.weights);
     session.atlasPositions = texelPositionsOf(setup.tiles);
+    placeModelStrokes(session, setup.mesh.mesh);
     requireStrokesOnSurface(session, *setup.tiles.atlas, setup.mesh.mesh, spec.mesh);
     setup.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     // The run's handle on the surface for deformations (a copy: the caller
