@@ -219,6 +219,23 @@ file(WRITE "${WORK}/cube_uv.obj" "${cube}")
 run(0 "baked into the model's own texture coordinates: 24 vertices, 12 triangles" render --mesh cube_uv.obj --preset turk_large_spots --tiles 60 --tile-size 4 --steps 5 --backend cpu --out cube_uv.glb)
 # ... and a GLB's TEXCOORD_0 (the sample torus, UV seams split, turned y-up by its node).
 run(0 "baked into the model's own texture coordinates: 2145 vertices" render --mesh ${CMAKE_CURRENT_LIST_DIR}/../models/meshes/torus.glb --preset turk_large_spots --tiles 150 --tile-size 4 --steps 5 --backend cpu --out torus_uv.glb)
+# A texture set on a model: in its own UVs at --bake-size, or in the tiles' atlas beside the tiled surface.
+run(0 "texture set in the model's own texture coordinates: 64x64" render --mesh cube_uv.obj --preset turk_large_spots --tiles 60 --tile-size 4 --steps 5 --backend cpu --bake-size 64 --texture-set cube_set)
+run(0 "texture set in the tiles' atlas" render --mesh sample:sphere --preset turk_large_spots --tiles 60 --tile-size 4 --steps 5 --backend cpu --texture-set sphere_set)
+foreach(set cube_set sphere_set)
+  foreach(f albedo.png height.png height.exr normal.png mask.png model.glb session.json texture_set.json)
+    if(NOT EXISTS "${WORK}/${set}/${f}")
+      message(SEND_ERROR "render --mesh --texture-set did not write ${set}/${f}")
+    endif()
+  endforeach()
+endforeach()
+file(READ "${WORK}/cube_set/texture_set.json" manifest)
+string(JSON layout GET "${manifest}" layout)
+string(JSON side GET "${manifest}" size 0)
+if(NOT layout STREQUAL "model uvs" OR NOT side EQUAL 64)
+  message(SEND_ERROR "cube_set/texture_set.json: layout '${layout}', size ${side}: want 'model uvs', 64")
+endif()
+run(2 "--bake-size 8 is out of range (accepted: 16..8192" render --mesh cube_uv.obj --preset turk_large_spots --steps 5 --bake-size 8 --out bad.glb)
 # Generalized diffusion has no surface form yet: refused, naming the operator.
 run(2 "cannot run on an atlas domain" render --mesh sample:sphere --preset gs_generalized_e ${small} --out bad.png)
 run(2 "an image field cannot vary a parameter over a mesh" render --mesh sample:sphere

@@ -19,6 +19,7 @@
 #include "core/surface/tile_builder.hpp"
 #include "core/surface/uv_bake.hpp"
 #include "test_support.hpp"
+#include "uv_torus_fixture.hpp"
 
 using namespace morphogen;
 
@@ -36,22 +37,12 @@ struct Baked {
     TexturedMesh result;
 };
 
-// The exporter's torus (UV seams copied) with its UVs squeezed into
-// [0.1, 0.6] x [0.2, 0.7]: one island, empty texture round it.
+// The squeezed UV torus (uv_torus_fixture.hpp) baked at `size`.
 Baked bakeTorus(int size) {
     Baked b;
-    MeshAttributes attributes;
-    const TriangleMesh seams = torusWithSeams(24, attributes);
-    b.mesh.positions = seams.positions;
-    b.mesh.triangles = seams.triangles;
-    for (const Eigen::Vector2f& uv : attributes.texcoords)
-        b.mesh.uvs.emplace_back(0.1f + 0.5f * uv.x(), 0.2f + 0.5f * uv.y());
-    TriangleMesh welded = seams;
-    weldVertices(welded);
-    TileOptions options;
-    options.tileSize = 4;
-    options.tiles = 600;
-    b.tiles = buildSurfaceTiles(welded, options);
+    test::UvTorus torus = test::uvTorus();
+    b.mesh = std::move(torus.mesh);
+    b.tiles = std::move(torus.tiles);
     SurfaceColours colours;
     const std::size_t cells = b.tiles.atlas->cellCount();
     colours.colours.assign(cells, {0, 0, 0, 255});

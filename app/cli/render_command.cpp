@@ -60,6 +60,7 @@ struct RenderFlags {
     double scale = 1.0;
     bool noCoarseToFine = false;
     int bitDepth = 8;
+    int bakeSize = 1024;
     KnobFlags knobs;
     GradientFlags gradient;
     TextureSetFlags textureSet;
@@ -264,13 +265,12 @@ void render(const RenderFlags& flags) {
     const bool image = !f.out.empty(); // without --out, only the texture set is written
     const bool surface = session.surface.active();
     if (surface) {
-        if (!f.textureSet.dir.empty())
-            throw InputError("--texture-set is for flat renders; on a mesh --out takes a "
-                             "screenshot (.png) or the textured model (.glb)");
         if (f.frames.wanted() && (isModelOutput(f.out) || session.surface.view.turntable > 0))
             throw InputError("--frames on a mesh draws screenshots from the session's view: give "
                              "--out a .png and no --turntable");
-        checkSurfaceOutput(f.out);
+        if (image)
+            checkSurfaceOutput(f.out);
+        checkBakeSize(f.bakeSize);
     } else if (image) {
         imageFormatForPath(f.out); // an unsupported extension is bad input, found before the run
     }
@@ -371,9 +371,9 @@ void render(const RenderFlags& flags) {
             applyPerturbation(f.perturb, session, *surfaceSetup, backend.makeSimulator, result);
         std::fprintf(stderr, "morphogen: %s\n",
                      describeSurfaceResult(result, *surfaceSetup).c_str());
-        const std::vector<std::string> written =
-            writeSurfaceOutput(result, *surfaceSetup, f.out, sessionOut, backend.context.get(),
-                               gl::parseContextFlag(f.context), files);
+        const std::vector<std::string> written = writeSurfaceOutput(
+            result, *surfaceSetup, {f.out, sessionOut, f.textureSet.dir, f.bakeSize},
+            backend.context.get(), gl::parseContextFlag(f.context), files);
         if (frames)
             frames->commit();
         files.commit();
@@ -475,6 +475,9 @@ void addRenderCommand(CLI::App& app) {
     addKnobFlags(*cmd, flags->knobs);
     addGradientFlags(*cmd, flags->gradient);
     addTextureSetFlags(*cmd, flags->textureSet);
+    cmd->add_option("--bake-size", flags->bakeSize,
+                    "on a model with texture coordinates: texels per side of the textures baked "
+                    "into its UVs (the .glb and the texture set; 16..8192, default 1024)");
     addFrameFlags(*cmd, flags->frames);
     addSettleFlags(*cmd, flags->settle);
     addSurfaceFlags(*cmd, flags->surface);

@@ -12,6 +12,7 @@
 #include "core/io/image_io.hpp"
 #include "core/mesh/mesh_check.hpp"
 #include "core/output/colormap.hpp"
+#include "core/output/model_texture_set.hpp"
 #include "core/session/session.hpp"
 #include "core/surface/surface_colours.hpp"
 #include "core/surface/surface_features.hpp"
@@ -116,32 +117,58 @@ std::string describeSurfaceResult(const RunResult& result, const SurfaceSetup& s
     return os.str();
 }
 
+void checkBakeSize(int size) {
+    if (size < 16 || size > 8192)
+        throw InputError("--bake-size " + std::to_string(size) +
+                         " is out of range (accepted: 16..8192 texels per side)");
+}
+
 std::vector<std::string> writeSurfaceOutput(const RunResult& result, const SurfaceSetup& setup,
-                                            const std::string& out, const std::string& sessionOut,
-                                            gl::Context* context,
+                                            const SurfaceOutputPaths& paths, gl::Context* context,
                                             std::optional<gl::ContextKind> contextKind,
                                             OutputFiles& files) {
+    checkBakeSize(paths.bakeSize);
+    const std::string& out = paths.out;
     std::vector<std::string> written;
     const Atlas& atlas = *setup.tiles.atlas;
     const SurfaceColours c = surfaceColours(result.state, result.completed, atlas);
     const SurfaceView& v = result.completed.surface.view;
+    // A model with texture coordinates gets the pattern baked into them: its
+    // own mesh and layout, ready for its material. Without, the tiled surface
+    // and its atlas are the model.
+    std::optional<UvMesh> uvs;
+    if (isModelOutput(out) || !paths.textureSetDir.empty()) {
+        uvs = readUvMesh(setup.mesh.file.path);
+        if (uvs && !bakeableUvs(*uvs)) {
+            std::fprintf(stderr, "morphogen: the model's texture coordinates leave [0, 1] (a "
+                                 "tiled or UDIM layout): written in the tiles' atlas instead\n");
+            uvs.reset();
+        }
+    }
+    if (!paths.textureSetDir.empty()) {
+        ModelTextureSetOptions options;
+        options.size = paths.bakeSize;
+        const ModelTextureSetSummary summary =
+            writeModelTextureSet(paths.textureSetDir, result.state, result.completed, setup.tiles,
+                                 uvs ? &*uvs : nullptr, options, files);
+        std::fprintf(stderr, "morphogen: texture set in %s: %dx%d\n",
+                     summary.modelUvs ? "the model's own texture coordinates"
+                                      : "the tiles' atlas (the model has no texture coordinates; "
+                                        "model.glb is the tiled surface that uses it)",
+                     summary.width, summary.height);
+        written.push_back(
+            (std::filesystem::path(paths.textureSetDir) / "texture_set.json").string());
+    }
     if (!out.empty() && isModelOutput(out)) {
-        // A model with texture coordinates gets the pattern baked into them:
-        // its own mesh and layout, ready for its material. Without, the
-        // tiled surface and its atlas are the model.
-        const std::optional<UvMesh> uvs = readUvMesh(setup.mesh.file.path);
-        if (uvs && bakeableUvs(*uvs)) {
-            const UvBakeOptions bake;
+        if (uvs) {
+            UvBakeOptions bake;
+            bake.size = paths.bakeSize;
             writeTexturedGlb(bakeIntoUvs(*uvs, setup.tiles, c, bake), files.stage(out));
             std::fprintf(stderr,
                          "morphogen: baked into the model's own texture coordinates: %zu "
                          "vertices, %zu triangles, %dx%d textures\n",
                          uvs->positions.size(), uvs->triangles.size(), bake.size, bake.size);
         } else {
-            if (uvs)
-                std::fprintf(stderr, "morphogen: the model's texture coordinates leave [0, 1] "
-                                     "(a tiled or UDIM layout): written with the tiles' atlas "
-                                     "instead\n");
             writeTexturedGlb(texturedSurface(setup.tiles, c), files.stage(out));
         }
         written.push_back(out);
@@ -170,9 +197,9 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
             written.push_back(out);
         }
     }
-    if (!sessionOut.empty()) {
-        saveSessionFile(result.completed, files.stage(sessionOut));
-        written.push_back(sessionOut);
+    if (!paths.sessionOut.empty()) {
+        saveSessionFile(result.completed, files.stage(paths.sessionOut));
+        written.push_back(paths.sessionOut);
     }
     return written;
 }

@@ -26,15 +26,27 @@ void checkSurfaceOutput(const std::string& out);
 // the spread of feature areas (for the report).
 std::string describeSurfaceResult(const RunResult& result, const SurfaceSetup& setup);
 
-// Writes a surface run's outputs into `files`: the textured model (out.glb)
-// or the screenshot (one, or view.turntable of them named OUT_000.png ...),
-// drawn on `context` (null: a headless context of `contextKind` is made), then
-// the session. Returns the paths written, in order.
+// What a surface render writes; empty paths are not written.
+struct SurfaceOutputPaths {
+    std::string out;           // a screenshot or the textured model (.glb)
+    std::string sessionOut;    // the session
+    std::string textureSetDir; // a texture set in the model's UVs (or the tiles' atlas)
+    int bakeSize = 1024;       // texels per side of what is baked into the model's UVs
+};
+
+// Writes a surface run's outputs into `files`: the texture set, the textured
+// model (out.glb; baked into the model's own UVs when it has them in
+// [0, 1], else the tiled surface and its atlas) or the screenshot (one, or
+// view.turntable of them named OUT_000.png ...), drawn on `context` (null: a
+// headless context of `contextKind` is made), then the session. Returns the
+// paths written, in order.
 std::vector<std::string> writeSurfaceOutput(const RunResult& result, const SurfaceSetup& setup,
-                                            const std::string& out, const std::string& sessionOut,
-                                            gl::Context* context,
+                                            const SurfaceOutputPaths& paths, gl::Context* context,
                                             std::optional<gl::ContextKind> contextKind,
                                             OutputFiles& files);
+
+// Checks --bake-size before the run; throws InputError naming the value.
+void checkBakeSize(int size);
 
 // The frames of a run on a model (`render --frames N` with a mesh): each one
 // a screenshot from the session's view, its colours at the frames' locked

@@ -171,25 +171,24 @@ bool bakeableUvs(const UvMesh& mesh) {
     });
 }
 
-TexturedMesh bakeIntoUvs(const UvMesh& mesh, const SurfaceTiles& tiles,
-                         const SurfaceColours& colours, const UvBakeOptions& options) {
+UvTexels sampleIntoUvs(const UvMesh& mesh, const SurfaceTiles& tiles, const SurfaceColours& colours,
+                       const UvBakeOptions& options, const std::vector<float>* value) {
     if (mesh.uvs.size() != mesh.positions.size() || options.size < 1 || options.padding < 0)
-        throw std::invalid_argument("bakeIntoUvs: inconsistent mesh or options");
+        throw std::invalid_argument("sampleIntoUvs: inconsistent mesh or options");
     const Atlas& atlas = *tiles.atlas;
-    if (colours.colours.size() != atlas.cellCount() || colours.height.size() != atlas.cellCount())
-        throw std::invalid_argument("bakeIntoUvs: colours do not match the atlas");
-    TexturedMesh out;
-    out.positions = mesh.positions;
-    out.uvs = mesh.uvs;
-    out.triangles = mesh.triangles;
-    vertexFrames(mesh, out.normals, out.tangents);
-
+    if (colours.colours.size() != atlas.cellCount() || colours.height.size() != atlas.cellCount() ||
+        (value && value->size() != atlas.cellCount()))
+        throw std::invalid_argument("sampleIntoUvs: colours do not match the atlas");
     const int size = options.size;
     const std::size_t texels = std::size_t(size) * std::size_t(size);
-    std::vector<std::array<std::uint8_t, 4>> colour(texels, {0, 0, 0, 0});
-    std::vector<float> height(texels, 0.0f);
-    std::vector<float> worldPerTexel(texels, 0.0f);
-    std::vector<char> covered(texels, 0);
+    UvTexels out;
+    out.size = size;
+    out.colour.assign(texels, {0, 0, 0, 0});
+    out.height.assign(texels, 0.0f);
+    if (value)
+        out.value.assign(texels, 0.0f);
+    out.worldPerTexel.assign(texels, 0.0f);
+    out.covered.assign(texels, 0);
     const TexelGrid grid(tiles);
 
     for (const auto& t : mesh.triangles) {
@@ -227,36 +226,41 @@ TexturedMesh bakeIntoUvs(const UvMesh& mesh, const SurfaceTiles& tiles,
                 // changes, and the normal map would show the steps).
                 const double reach =
                     std::max(1.5 * grid.spacing(), 1.01 * std::sqrt(near.front().first));
-                double weightSum = 0, rgb[3] = {0, 0, 0}, h = 0;
+                double weightSum = 0, rgb[3] = {0, 0, 0}, h = 0, v = 0;
                 for (const auto& [d2, cell] : near) {
                     const double f = std::max(0.0, 1.0 - std::sqrt(d2) / reach);
                     const double w = f * f + 1e-12;
                     for (int k = 0; k < 3; ++k)
                         rgb[k] += w * colours.colours[cell][std::size_t(k)];
                     h += w * colours.height[cell];
+                    if (value)
+                        v += w * (*value)[cell];
                     weightSum += w;
                 }
                 const std::size_t i = std::size_t(y) * std::size_t(size) + std::size_t(x);
                 for (int k = 0; k < 3; ++k)
-                    colour[i][std::size_t(k)] = std::uint8_t(std::lround(rgb[k] / weightSum));
-                colour[i][3] = 255;
-                height[i] = float(h / weightSum);
-                worldPerTexel[i] = scale;
-                covered[i] = 1;
+                    out.colour[i][std::size_t(k)] = std::uint8_t(std::lround(rgb[k] / weightSum));
+                out.colour[i][3] = 255;
+                out.height[i] = float(h / weightSum);
+                if (value)
+                    out.value[i] = float(v / weightSum);
+                out.worldPerTexel[i] = scale;
+                out.covered[i] = 1;
             }
     }
+    out.island = out.covered;
 
     // Dilation: each ring of empty texels next to covered ones takes their mean.
     for (int ring = 0; ring < options.padding; ++ring) {
         std::vector<std::size_t> filled;
         std::vector<std::array<std::uint8_t, 4>> newColour;
-        std::vector<float> newHeight, newScale;
+        std::vector<float> newHeight, newValue, newScale;
         for (int y = 0; y < size; ++y)
             for (int x = 0; x < size; ++x) {
                 const std::size_t i = std::size_t(y) * std::size_t(size) + std::size_t(x);
-                if (covered[i])
+                if (out.covered[i])
                     continue;
-                double sum[4] = {0, 0, 0, 0}, h = 0, s = 0;
+                double sum[4] = {0, 0, 0, 0}, h = 0, v = 0, s = 0;
                 int count = 0;
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) {
@@ -264,12 +268,14 @@ TexturedMesh bakeIntoUvs(const UvMesh& mesh, const SurfaceTiles& tiles,
                         if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= size || ny >= size)
                             continue;
                         const std::size_t j = std::size_t(ny) * std::size_t(size) + std::size_t(nx);
-                        if (!covered[j])
+                        if (!out.covered[j])
                             continue;
                         for (int k = 0; k < 4; ++k)
-                            sum[k] += colour[j][std::size_t(k)];
-                        h += height[j];
-                        s += worldPerTexel[j];
+                            sum[k] += out.colour[j][std::size_t(k)];
+                        h += out.height[j];
+                        if (value)
+                            v += out.value[j];
+                        s += out.worldPerTexel[j];
                         ++count;
                     }
                 if (count == 0)
@@ -280,20 +286,25 @@ TexturedMesh bakeIntoUvs(const UvMesh& mesh, const SurfaceTiles& tiles,
                     mean[std::size_t(k)] = std::uint8_t(std::lround(sum[k] / count));
                 newColour.push_back(mean);
                 newHeight.push_back(float(h / count));
+                newValue.push_back(float(v / count));
                 newScale.push_back(float(s / count));
             }
         if (filled.empty())
             break;
         for (std::size_t k = 0; k < filled.size(); ++k) {
-            colour[filled[k]] = newColour[k];
-            height[filled[k]] = newHeight[k];
-            worldPerTexel[filled[k]] = newScale[k];
-            covered[filled[k]] = 1;
+            out.colour[filled[k]] = newColour[k];
+            out.height[filled[k]] = newHeight[k];
+            if (value)
+                out.value[filled[k]] = newValue[k];
+            out.worldPerTexel[filled[k]] = newScale[k];
+            out.covered[filled[k]] = 1;
         }
     }
+    return out;
+}
 
-    // The normal map: the relief's slope in the tangent frame (x along +u,
-    // y along +v, the rows), `bump` mean tile-texel lengths high.
+double uvRelief(const SurfaceTiles& tiles, float bump) {
+    const Atlas& atlas = *tiles.atlas;
     double texelLength = 0;
     std::size_t used = 0;
     for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
@@ -301,32 +312,66 @@ TexturedMesh bakeIntoUvs(const UvMesh& mesh, const SurfaceTiles& tiles,
             texelLength += std::sqrt(double(tiles.texelArea[i]));
             ++used;
         }
-    const double relief = options.bump * colours.relief * (used ? texelLength / double(used) : 0);
+    return double(bump) * (used ? texelLength / double(used) : 0);
+}
+
+RgbaImage uvNormalMap(const UvTexels& texels, const std::vector<float>& height, double relief,
+                      bool yDown) {
+    const int size = texels.size;
+    const std::size_t count = std::size_t(size) * std::size_t(size);
+    if (height.size() != count || texels.covered.size() != count)
+        throw std::invalid_argument("uvNormalMap: the height does not match the texels");
     RgbaImage normals{size, size,
-                      std::vector<std::array<std::uint8_t, 4>>(texels, {128, 128, 255, 255})};
+                      std::vector<std::array<std::uint8_t, 4>>(count, {128, 128, 255, 255})};
     const auto at = [&](int x, int y) {
         return std::size_t(std::clamp(y, 0, size - 1)) * std::size_t(size) +
                std::size_t(std::clamp(x, 0, size - 1));
     };
+    const std::vector<char>& covered = texels.covered;
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
             const std::size_t i = at(x, y);
-            if (!covered[i] || !(worldPerTexel[i] > 0))
+            const float perTexel = texels.worldPerTexel[i];
+            if (!covered[i] || !(perTexel > 0))
                 continue;
-            const auto slope = [&](std::size_t minus, std::size_t plus, double span) {
+            // Central differences over the covered neighbours (one-sided at an
+            // island's padded rim).
+            const auto slope = [&](std::size_t minus, std::size_t plus) {
                 const std::size_t lo = covered[minus] ? minus : i, hi = covered[plus] ? plus : i;
-                const double steps = (lo == minus ? span / 2 : 0) + (hi == plus ? span / 2 : 0);
+                const double steps = (lo == minus ? 1.0 : 0.0) + (hi == plus ? 1.0 : 0.0);
                 return steps > 0 ? (double(height[hi]) - double(height[lo])) / steps : 0.0;
             };
-            const double gx = slope(at(x - 1, y), at(x + 1, y), 2.0) * relief / worldPerTexel[i];
-            const double gy = slope(at(x, y - 1), at(x, y + 1), 2.0) * relief / worldPerTexel[i];
+            const double gx = slope(at(x - 1, y), at(x + 1, y)) * relief / perTexel;
+            const double gDown = slope(at(x, y - 1), at(x, y + 1)) * relief / perTexel;
+            const double gy = yDown ? gDown : -gDown;
             const Eigen::Vector3d n = Eigen::Vector3d(-gx, -gy, 1.0).normalized();
             for (int k = 0; k < 3; ++k)
                 normals.texels[i][std::size_t(k)] =
                     std::uint8_t(std::lround(std::clamp((n[k] * 0.5 + 0.5) * 255.0, 0.0, 255.0)));
         }
-    out.baseColour = RgbaImage{size, size, std::move(colour)};
-    out.normalMap = std::move(normals);
+    return normals;
+}
+
+TexturedMesh bakeIntoUvs(const UvMesh& mesh, const SurfaceTiles& tiles,
+                         const SurfaceColours& colours, const UvBakeOptions& options) {
+    UvTexels texels = sampleIntoUvs(mesh, tiles, colours, options);
+    // The tangents' bitangent runs along +v, so the normal map's y runs down the image.
+    RgbaImage normals =
+        uvNormalMap(texels, texels.height, uvRelief(tiles, options.bump) * colours.relief, true);
+    return uvBakedMesh(mesh, RgbaImage{texels.size, texels.size, std::move(texels.colour)},
+                       std::move(normals));
+}
+
+TexturedMesh uvBakedMesh(const UvMesh& mesh, RgbaImage baseColour, RgbaImage normalMap) {
+    if (mesh.uvs.size() != mesh.positions.size())
+        throw std::invalid_argument("uvBakedMesh: every vertex needs a UV");
+    TexturedMesh out;
+    out.positions = mesh.positions;
+    out.uvs = mesh.uvs;
+    out.triangles = mesh.triangles;
+    vertexFrames(mesh, out.normals, out.tangents);
+    out.baseColour = std::move(baseColour);
+    out.normalMap = std::move(normalMap);
     return out;
 }
 
