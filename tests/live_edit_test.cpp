@@ -404,7 +404,7 @@ TEST(LiveEdit, ModelSpaceStrokesFitAnyModel) {
         Session s = loadPreset("turk_small_spots");
         s.length = 60;
         s.surface.mesh = mesh;
-        s.surface.tiles = 120;
+        s.surface.tiles = 300;
         s.surface.tileSize = 4;
         nlohmann::json j = sessionToJson(s);
         j["edits"] = {stroke};

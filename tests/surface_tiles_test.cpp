@@ -165,7 +165,10 @@ TEST(SurfaceTiles, SimplifiesToTheBudgetKeepingTopology) {
     const MeshReport holes = checkMesh(holesTiles().simplified);
     ASSERT_EQ(holes.components.size(), 1u);
     EXPECT_EQ(holes.components[0].genus, 3);
-    EXPECT_LE(holesTiles().simplified.triangles.size(), 300u);
+    // The budget's 300 triangles, and at most a third more where the tiles
+    // missed the model and some of its vertices were put back (followModel).
+    const std::size_t extra = holesTiles().follow.insertions > 0 ? 100 : 0;
+    EXPECT_LE(holesTiles().simplified.triangles.size(), 300u + extra);
     const MeshReport torus = checkMesh(torusTiles().simplified);
     ASSERT_EQ(torus.components.size(), 1u);
     EXPECT_EQ(torus.components[0].genus, 1);

@@ -142,6 +142,17 @@ void tileStats(const TileStatsFlags& f) {
                 "p99/median %.2f; substeps %d\n",
                 st.max, st.p99, st.p90, st.median, st.max / st.median, st.p99 / st.median,
                 weightedSubsteps(*setup.weights));
+    const SurfaceGap gap = tiledSurfaceGap(tiles, setup.mesh.mesh);
+    std::printf("tiled surface to the model's %zu vertices: max %.3g%% p99 %.3g%% of the diagonal, "
+                "%zu farther than 1%% (the worst at %g, %g, %g)\n",
+                gap.vertices, 100 * gap.max, 100 * gap.p99, gap.overOnePercent,
+                double(gap.worst.x()), double(gap.worst.y()), double(gap.worst.z()));
+    const SurfaceGap simplifiedGap = surfaceGap(m, setup.mesh.mesh);
+    std::printf("simplified mesh to the model's vertices: max %.3g%% p99 %.3g%%, %zu farther than "
+                "1%% (the worst at %g, %g, %g)\n",
+                100 * simplifiedGap.max, 100 * simplifiedGap.p99, simplifiedGap.overOnePercent,
+                double(simplifiedGap.worst.x()), double(simplifiedGap.worst.y()),
+                double(simplifiedGap.worst.z()));
     const std::vector<double> angles = triangleAngles(m);
     const auto at = [&](double q) { return angles[std::size_t(q * double(angles.size() - 1))]; };
     std::printf("simplified angles: min %.1f p1 %.1f p5 %.1f median %.1f p99 %.1f max %.1f\n",

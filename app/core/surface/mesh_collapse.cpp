@@ -6,7 +6,9 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Constrained_placement.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/LindstromTurk_placement.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
 namespace morphogen {
@@ -16,6 +18,19 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using CgalMesh = CGAL::Surface_mesh<Point>;
+
+// The mesh's border edges, as CGAL's edge_is_constrained_map: a scan's open
+// edges (an ear cut open, a hole) stay where they are, as meshoptimizer's
+// LockBorder keeps them; collapsing them would pull the tiles back from the
+// model's edge.
+struct BorderEdges {
+    using key_type = CgalMesh::Edge_index;
+    using value_type = bool;
+    using reference = bool;
+    using category = boost::readable_property_map_tag;
+    const CgalMesh* mesh = nullptr;
+    friend bool get(const BorderEdges& map, key_type e) { return map.mesh->is_border(e); }
+};
 
 } // namespace
 
@@ -39,7 +54,12 @@ TriangleMesh collapseKeepingTopology(const TriangleMesh& mesh, std::size_t targe
     PMP::polygon_soup_to_polygon_mesh(points, faces, surface);
     // The predicate counts edges: a closed triangle mesh has 3/2 as many as triangles.
     SMS::Count_stop_predicate<CgalMesh> stop(targetTriangles * 3 / 2);
-    SMS::edge_collapse(surface, stop);
+    const BorderEdges border{&surface};
+    // Next to a border edge the collapsed vertex stays on it.
+    const SMS::Constrained_placement<SMS::LindstromTurk_placement<CgalMesh>, BorderEdges> placement(
+        border);
+    SMS::edge_collapse(surface, stop,
+                       CGAL::parameters::edge_is_constrained_map(border).get_placement(placement));
     surface.collect_garbage();
 
     TriangleMesh out;

@@ -59,6 +59,13 @@ std::string simplificationSummary(const SurfaceTiles& tiles) {
     if (s.componentsKept > 0)
         os << ", " << s.componentsKept << (s.componentsKept == 1 ? " part" : " parts")
            << " kept whole (no simplification kept its topology)";
+    const FollowStats& f = tiles.follow;
+    if (f.insertions > 0) {
+        os.precision(2);
+        os << ", " << f.insertions << " of its vertices put back where the simplification cut off "
+           << "parts (the tiles then " << 100 * f.gapAfter << "% of the diagonal from the model "
+           << "at most, " << 100 * f.gapBefore << "% before)";
+    }
     return os.str();
 }
 

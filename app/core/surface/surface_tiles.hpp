@@ -10,6 +10,7 @@
 #include "core/domain/atlas.hpp"
 #include "core/mesh/triangle_mesh.hpp"
 #include "core/surface/mesh_simplify.hpp"
+#include "core/surface/tile_fidelity.hpp"
 
 namespace morphogen {
 
@@ -26,6 +27,7 @@ struct TileOptions {
 struct SurfaceTiles {
     TriangleMesh simplified;     // the mesh the tiles were laid on
     SimplifyStats simplifyStats; // how it was simplified (simplifyForTiles)
+    FollowStats follow;          // the model's vertices put back (followModel)
     // The quads' corner points: the simplified mesh's vertices, then one point
     // per edge (its midpoint), then one per triangle (its split point).
     std::vector<Eigen::Vector3f> quadVertices;

@@ -11,6 +11,8 @@
 #include "core/mesh/mesh_check.hpp"
 #include "core/surface/mesh_simplify.hpp"
 #include "core/surface/surface_geometry.hpp"
+#include "core/surface/tile_diagnostics.hpp"
+#include "core/surface/tile_fidelity.hpp"
 #include "core/surface/tile_mesh_quality.hpp"
 #include "core/surface/tile_split.hpp"
 
@@ -23,6 +25,14 @@ constexpr int kMaxAtlasSide = 65535;
 // Edges longer than this many times the equilateral edge of the budget's mean
 // triangle are split (Botsch and Kobbelt's isotropic remeshing uses 4/3).
 constexpr double kSplitLength = 4.0 / 3.0;
+// The farthest a model's vertex may lie from the simplified mesh before it is
+// put back (followModel), a fraction of the bounding-box diagonal.
+constexpr double kFollowTolerance = 0.006;
+// How far a vertex put back may move while the shapes are evened out, a
+// fraction of the diagonal.
+constexpr double kPinReach = 0.008;
+// Passes of putting back, evening out and laying the tiles again.
+constexpr int kFollowPasses = 3;
 
 // The most tiles of this size the limits and the atlas side allow.
 long long maxTiles(int tileSize) {
@@ -143,11 +153,59 @@ SurfaceTiles buildSurfaceTiles(const TriangleMesh& full, const TileOptions& opti
         splitLongEdges(simplified, projector, maxLength, target);
         improveForTiles(simplified, projector);
     }
-    SurfaceTiles out = splitIntoTiles(simplified, options.tileSize);
-    out.simplifyStats = stats;
-    report("projection", 0);
-    computeSurfaceGeometry(out, full, projector, [&](double f) { report("projection", f); });
-    report("projection", 1);
+    const auto lay = [&](const TriangleMesh& on) {
+        SurfaceTiles tiles = splitIntoTiles(on, options.tileSize);
+        tiles.simplifyStats = stats;
+        report("projection", 0);
+        computeSurfaceGeometry(tiles, full, projector, [&](double f) { report("projection", f); });
+        report("projection", 1);
+        return tiles;
+    };
+    SurfaceTiles out = lay(simplified);
+    if (!stats.simplified)
+        return out;
+    // What the simplifier cut off and the projection could not reach (an
+    // ear's tip) goes back, held near where it is while the shapes are evened
+    // out, and the tiles are laid again; up to a third more triangles. Evening
+    // out moves the other vertices too, so a pass can open a gap elsewhere:
+    // a few passes.
+    const std::size_t cap = simplified.triangles.size() * 4 / 3;
+    VertexPins pins;
+    pins.reach = float(kPinReach * boundsOf(full.positions).diagonal());
+    std::vector<double> gaps;
+    SurfaceGap gap = tiledSurfaceGap(out, full, &gaps);
+    FollowStats follow;
+    follow.gapBefore = follow.gapAfter = gap.max;
+    for (int pass = 0; pass < kFollowPasses && gap.max > kFollowTolerance; ++pass) {
+        std::vector<char> missed(gaps.size());
+        for (std::size_t v = 0; v < gaps.size(); ++v)
+            missed[v] = gaps[v] > kFollowTolerance ? 1 : 0;
+        std::vector<char> inserted;
+        const FollowStats f =
+            followModel(simplified, full, kFollowTolerance, cap, 6, &inserted, &missed);
+        if (f.insertions == 0)
+            break;
+        pins.pinned.resize(simplified.positions.size(), 0);
+        pins.at.resize(simplified.positions.size(), Eigen::Vector3f::Zero());
+        for (std::size_t v = 0; v < inserted.size(); ++v)
+            if (inserted[v]) {
+                pins.pinned[v] = 1;
+                pins.at[v] = simplified.positions[v];
+            }
+        improveForTiles(simplified, projector, 8, &pins);
+        SurfaceTiles again = lay(simplified);
+        std::vector<double> gapsAgain;
+        const SurfaceGap gapAgain = tiledSurfaceGap(again, full, &gapsAgain);
+        if (gapAgain.max >= gap.max)
+            break; // no closer (a budget far too small for the shape): keep the tiles before
+        follow.insertions += f.insertions;
+        follow.rounds += f.rounds;
+        follow.gapAfter = gapAgain.max;
+        out = std::move(again);
+        gap = gapAgain;
+        gaps = std::move(gapsAgain);
+    }
+    out.follow = follow;
     return out;
 }
 

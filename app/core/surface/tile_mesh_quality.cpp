@@ -109,7 +109,7 @@ std::size_t flipPass(TriangleMesh& mesh) {
     return flips;
 }
 
-std::size_t relaxPass(TriangleMesh& mesh, const MeshProjector& full) {
+std::size_t relaxPass(TriangleMesh& mesh, const MeshProjector& full, const VertexPins* pins) {
     const std::size_t nv = mesh.positions.size();
     const EdgeTable edges(mesh);
     std::vector<char> boundary(nv, 0);
@@ -131,6 +131,7 @@ std::size_t relaxPass(TriangleMesh& mesh, const MeshProjector& full) {
     for (std::uint32_t v = 0; v < nv; ++v) {
         if (boundary[v] || neighbours[v].empty())
             continue;
+        const bool pinned = pins && v < pins->pinned.size() && pins->pinned[v];
         // The area-weighted mean of the centroids of its triangles: a vertex moves
         // towards its larger triangles, which evens out the triangles' areas (and so
         // the texels', whose smallest set the time step), not only the edge lengths.
@@ -151,6 +152,8 @@ std::size_t relaxPass(TriangleMesh& mesh, const MeshProjector& full) {
         Eigen::Vector3f delta = centre - mesh.positions[v];
         delta -= n * n.dot(delta);
         const Eigen::Vector3f moved = full.closest(mesh.positions[v] + delta).position;
+        if (pinned && (moved - pins->at[v]).norm() > pins->reach)
+            continue;
 
         const Eigen::Vector3d up = n.cast<double>();
         const auto worst = [&](const Eigen::Vector3f& at) {
@@ -260,12 +263,13 @@ double minimumAngle(const TriangleMesh& mesh) {
     return smallest;
 }
 
-MeshQualityStats improveForTiles(TriangleMesh& mesh, const MeshProjector& full, int rounds) {
+MeshQualityStats improveForTiles(TriangleMesh& mesh, const MeshProjector& full, int rounds,
+                                 const VertexPins* pins) {
     MeshQualityStats s;
     s.minAngleBefore = minimumAngle(mesh);
     for (int r = 0; r < rounds; ++r) {
         s.flips += flipPass(mesh);
-        s.moves += relaxPass(mesh, full);
+        s.moves += relaxPass(mesh, full, pins);
     }
     s.flips += flipPass(mesh);
     s.minAngleAfter = minimumAngle(mesh);

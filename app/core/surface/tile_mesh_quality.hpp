@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "core/mesh/triangle_mesh.hpp"
 #include "core/surface/mesh_projector.hpp"
@@ -34,9 +35,17 @@ struct MeshQualityStats {
 // it to 4.5 and the holes model from 6-8 to 5.5-7; 8 was best overall, and the
 // area-weighted smoothing needs them for the angles too (11.4 degrees at the
 // worst after 4 rounds on a simplified holes model, 12+ after 8).
-// Vertices of open boundaries stay where they are. Changes V, E and F not at
-// all, so the components, boundaries and genus are those of the input.
-MeshQualityStats improveForTiles(TriangleMesh& mesh, const MeshProjector& full, int rounds = 8);
+// Vertices of open boundaries stay where they are; `pins` keep some others
+// near a point (followModel's: a tip put back may even out its triangles but
+// not slide off the tip). Changes V, E and F not at all, so the components,
+// boundaries and genus are those of the input.
+struct VertexPins {
+    std::vector<char> pinned;        // per vertex (shorter: the rest are free)
+    std::vector<Eigen::Vector3f> at; // per pinned vertex, where it must stay near
+    float reach = 0;
+};
+MeshQualityStats improveForTiles(TriangleMesh& mesh, const MeshProjector& full, int rounds = 8,
+                                 const VertexPins* pins = nullptr);
 
 // Splits every edge longer than maxLength at its midpoint (projected onto
 // `full`), longest first, until none is left or the next split would take
