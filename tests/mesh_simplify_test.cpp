@@ -11,11 +11,11 @@
 #include "core/mesh/mesh_check.hpp"
 #include "core/mesh/mesh_repair.hpp"
 #include "core/mesh/mesh_samples.hpp"
+#include "core/mesh/scan_sample.hpp"
 #include "core/surface/mesh_collapse.hpp"
 #include "core/surface/mesh_simplify.hpp"
 #include "core/surface/tile_builder.hpp"
 #include "core/surface/tile_diagnostics.hpp"
-#include "scan_fixture.hpp"
 
 using namespace morphogen;
 
@@ -24,7 +24,7 @@ namespace {
 // The scan as loadMesh leaves it: welded, repaired, oriented.
 const TriangleMesh& scan() {
     static const TriangleMesh mesh = [] {
-        TriangleMesh m = test::scanLikeMesh(60, 0.02);
+        TriangleMesh m = scanLikeMesh(60, 0.02);
         weldVertices(m);
         repairMesh(m, {});
         orientConsistently(m);

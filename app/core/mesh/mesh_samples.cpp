@@ -1,4 +1,5 @@
 #include "core/mesh/mesh_samples.hpp"
+#include "core/mesh/scan_sample.hpp"
 
 #include <cmath>
 #include <map>
@@ -272,6 +273,7 @@ const std::vector<SampleKind>& sampleKinds() {
         {"torus", 64, "segments around the ring, half as many around the tube"},
         {"holes", 3, "Catmull-Clark rounds on the cage (136 * 4^rounds triangles)"},
         {"blob", 4, "subdivision level of its icosphere (20 * 4^level triangles)"},
+        {"scan", 60, "cells per side of the marching tetrahedra (60: about 30k triangles)"},
     };
     return kinds;
 }
@@ -284,6 +286,10 @@ TriangleMesh sampleMesh(const std::string& name, int detail) {
             if (name == "sphere" || name == "blob") {
                 checkDetail(name, detail, 0, 8);
                 return name == "sphere" ? icosphere(detail) : blob(detail);
+            }
+            if (name == "scan") {
+                checkDetail(name, detail, 8, 160);
+                return scanLikeMesh(detail, 0.02);
             }
             if (name == "torus") {
                 checkDetail(name, detail, 6, 2000);

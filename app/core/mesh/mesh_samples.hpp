@@ -9,7 +9,8 @@
 namespace morphogen {
 
 // The sample meshes in models/meshes/, generated (`morphogen mesh-gen`). All
-// closed, manifold and wound outward; sizes in model units.
+// closed, manifold and wound outward, except the scan (scan_sample.hpp: open
+// ears, small handles, islands, as a scanner's mesh); sizes in model units.
 
 // A unit sphere: the icosahedron with every triangle split in four `level`
 // times, projected onto the sphere (20 * 4^level triangles).

@@ -1,4 +1,4 @@
-#include "scan_fixture.hpp"
+#include "core/mesh/scan_sample.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <Eigen/Geometry>
 
-namespace morphogen::test {
+namespace morphogen {
 
 namespace {
 
@@ -125,4 +125,4 @@ TriangleMesh scanLikeMesh(int cells, double noise) {
     return mesh;
 }
 
-} // namespace morphogen::test
+} // namespace morphogen

@@ -2,7 +2,7 @@
 
 #include "core/mesh/triangle_mesh.hpp"
 
-namespace morphogen::test {
+namespace morphogen {
 
 // What a 3D scanner's reconstruction looks like: the zero set of a blob (a
 // body, a head, two thin ears cut open at the box's top) plus value noise at
@@ -13,4 +13,4 @@ namespace morphogen::test {
 // Welded (vertices shared along grid edges), manifold, wound outward.
 TriangleMesh scanLikeMesh(int cells, double noise);
 
-} // namespace morphogen::test
+} // namespace morphogen
