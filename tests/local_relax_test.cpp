@@ -116,6 +116,37 @@ TEST(SurfacePerturbation, TexelsWithinTheBallAndTheirTiles) {
                  InputError);
 }
 
+// Lo's +-2 on one chemical leaves a spot under the ball a spot; with the
+// erasing brushes first every chemical there is flat but for the noise.
+TEST(SurfacePerturbation, TheErasingBrushesWipeTheFeaturesUnderTheBall) {
+    const Fixture& f = settledSphere();
+    const SurfacePerturbation p = perturbSurface(f.setup.tiles, f.session.domain(),
+                                                 Eigen::Vector3f(0, 0, 1), 0.3f, 0, 2.0f, 7);
+    const int chemicals = int(f.session.outputModel().chemicals().size());
+    const std::vector<Brush> erase = erasingBrushes(p, f.settled, chemicals);
+    ASSERT_EQ(int(erase.size()), chemicals);
+    const auto spread = [&](const State& s, int c) {
+        float lo = INFINITY, hi = -INFINITY;
+        for (const BrushRegion::Cell& cell : p.brush.region.cells()) {
+            lo = std::min(lo, s.plane(c)[cell.index]);
+            hi = std::max(hi, s.plane(c)[cell.index]);
+        }
+        return hi - lo;
+    };
+    // The settled pattern has features under the ball (b, the spots' chemical, varies).
+    EXPECT_GT(spread(f.settled, 1), 1.0f);
+    CpuSimulator noiseOnly(f.session), erased(f.session);
+    noiseOnly.setState(f.settled);
+    noiseOnly.applyBrush(p.brush);
+    EXPECT_GT(spread(noiseOnly.state(), 1), 1.0f) << "the noise alone keeps the spots";
+    erased.setState(f.settled);
+    for (const Brush& b : erase)
+        erased.applyBrush(b);
+    erased.applyBrush(p.brush);
+    EXPECT_EQ(spread(erased.state(), 1), 0.0f);
+    EXPECT_LE(spread(erased.state(), 0), 4.0f); // the +-2 noise only
+}
+
 TEST(LocalRelax, ReEquilibratesLocallyLikeAGlobalRun) {
     const Fixture& f = settledSphere();
     const Atlas& atlas = *f.setup.tiles.atlas;

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "core/base/errors.hpp"
@@ -10,6 +11,7 @@
 #include "core/sim/local_regrowth.hpp"
 #include "core/sim/local_relax.hpp"
 #include "core/sim/localized_rd.hpp"
+#include "core/sim/segments.hpp"
 #include "core/surface/surface_perturb.hpp"
 
 namespace morphogen::cli {
@@ -73,18 +75,36 @@ void applyPerturbation(const PerturbFlags& flags, const Session& session, const 
                        float(ball[3]), 0, 2.0f, std::uint64_t(session.seed) + 1, "--perturb");
     // As the run stepped: dt split into the weighted atlas's substeps.
     const Session running = segmentSessions(session).back();
+    const int substeps = std::max(1, segmentsOf(session).back().substeps);
     std::unique_ptr<Simulator> sim = make(running);
     sim->setState(result.state);
+    // The features under the ball erased (every chemical its mean there), then Lo's noise.
+    for (const Brush& b :
+         erasingBrushes(p, result.state, int(running.outputModel().chemicals().size())))
+        sim->applyBrush(b);
     sim->applyBrush(p.brush);
     // The set grows where the change reaches its edge (local_regrowth.hpp):
     // Lo's step-counted growth went global on meshes before spots re-formed.
+    // Thresholds, checks and the cap count session steps: a simulator step is
+    // 1 / substeps of one, and a pattern drifting 2e-5 a session step moves
+    // that much less a substep.
+    LocalRegrowthOptions grow;
+    grow.checkEvery *= substeps;
+    grow.settledBelow /= float(substeps);
+    grow.spreadAbove /= float(substeps);
+    RelaxOptions relax;
+    relax.checkEvery = grow.checkEvery;
+    relax.settledBelow = grow.settledBelow;
+    relax.maxSteps = int(std::min<long long>(static_cast<long long>(relax.maxSteps) * substeps,
+                                             std::numeric_limits<int>::max() / 2));
     LocalRegrowth regrowth(std::make_shared<const TileNeighbourhoods>(atlas),
-                           running.domain().sharedAtlas(), p.touched);
-    const RelaxResult r = relaxAdaptively(*sim, regrowth);
+                           running.domain().sharedAtlas(), p.touched, grow);
+    const RelaxResult r = relaxAdaptively(*sim, regrowth, relax);
     std::ostringstream os;
     os << "perturbed " << p.brush.region.cells().size() << " texels in " << p.touched.size()
        << " tiles; localized RD " << (r.settled ? "re-settled" : "did not re-settle") << " after "
-       << r.iterations << " steps, " << r.seconds << " s; phases it/s (tiles):";
+       << r.iterations / substeps << " session steps (" << r.iterations << " steps of dt/"
+       << substeps << "), " << r.seconds << " s; phases it/s (tiles):";
     for (const RelaxPhase& phase : r.phases)
         os << " " << (phase.phase ? "A" + std::to_string(phase.phase) : std::string("global"))
            << " " << long(std::lround(phase.iterationsPerSecond())) << " (" << phase.tiles << ")";

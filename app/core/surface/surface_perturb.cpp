@@ -1,5 +1,6 @@
 #include "core/surface/surface_perturb.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -45,6 +46,27 @@ SurfacePerturbation perturbSurface(const SurfaceTiles& tiles, const Domain& doma
     p.brush.seed = seed;
     p.touched = touchedTiles(atlas, p.brush.region);
     return p;
+}
+
+std::vector<Brush> erasingBrushes(const SurfacePerturbation& perturbation, const State& state,
+                                  int chemicals) {
+    std::vector<Brush> brushes;
+    const std::vector<BrushRegion::Cell>& cells = perturbation.brush.region.cells();
+    if (cells.empty())
+        return brushes;
+    for (int c = 0; c < std::min(chemicals, state.channels()); ++c) {
+        const float* plane = state.plane(c);
+        double sum = 0;
+        for (const BrushRegion::Cell& cell : cells)
+            sum += double(plane[cell.index]);
+        Brush b;
+        b.mode = BrushMode::Set;
+        b.region = perturbation.brush.region;
+        b.chemical = c;
+        b.value = float(sum / double(cells.size()));
+        brushes.push_back(std::move(b));
+    }
+    return brushes;
 }
 
 } // namespace morphogen

@@ -29,4 +29,13 @@ SurfacePerturbation perturbSurface(const SurfaceTiles& tiles, const Domain& doma
                                    float value, std::uint64_t seed,
                                    const char* what = "perturbation");
 
+// Lo's distort adds noise to what is there: a spot under it stays a spot
+// (on a Turing pattern +-2 of one chemical barely moves the other). These
+// brushes set every chemical in the perturbation's region to its mean there
+// first, so the features it covers are erased and only the noise seeds them
+// again. `state`: the finished pattern the region lies in, of which the
+// first `chemicals` planes are the model's chemicals.
+std::vector<Brush> erasingBrushes(const SurfacePerturbation& perturbation, const State& state,
+                                  int chemicals);
+
 } // namespace morphogen
