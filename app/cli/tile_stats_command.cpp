@@ -18,6 +18,7 @@
 #include "core/mesh/edge_table.hpp"
 #include "core/session/session.hpp"
 #include "core/surface/surface_setup.hpp"
+#include "core/surface/surface_weights.hpp"
 #include "core/surface/tile_diagnostics.hpp"
 
 namespace morphogen::cli {
@@ -214,7 +215,7 @@ void tileStats(const TileStatsFlags& f) {
                                 180 / M_PI
                           : 0;
                 x.valence = valence[m.triangles[x.triangle][std::size_t(x.corner)]];
-                x.floored = x.area < 0.05 || x.lu < 0.2 || x.lv < 0.2;
+                x.floored = x.area < kFloorArea || x.lu < kFloorDistance || x.lv < kFloorDistance;
                 info.push_back(x);
             }
     std::sort(info.begin(), info.end(),

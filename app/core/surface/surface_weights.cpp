@@ -58,8 +58,8 @@ TexelFloors texelFloors(const SurfaceTiles& tiles, double unitsPerWorld) {
     TexelFloors floors;
     floors.meanArea = areas.empty() ? 1.0 : areaSum / double(areas.size());
     const double medianArea = median(std::move(areas));
-    floors.minArea = 0.05 * medianArea;
-    floors.minDistance = 0.2 * std::sqrt(medianArea);
+    floors.minArea = kFloorArea * medianArea;
+    floors.minDistance = kFloorDistance * std::sqrt(medianArea);
     return floors;
 }
 

@@ -38,6 +38,12 @@ struct SurfaceWeightOptions {
 // The guards against degenerate texels (see surfaceWeights): areas below
 // minArea and centre distances below minDistance count as those floors (model
 // units), set from the median texel area.
+// 15% and 0.35: on the scan samples (docs/mesh_repair.md) the texels a rough
+// surface squeezes set the step at 5% and 0.2 (91 substeps on a 30k-triangle
+// scan, 217 on a 108k one); at these floors 30 and 44, while the samples'
+// texels stay above them (their substeps unchanged but one on the holes model).
+constexpr double kFloorArea = 0.15;     // of the median texel area
+constexpr double kFloorDistance = 0.35; // of the median texel width
 struct TexelFloors {
     double minArea = 0;
     double minDistance = 0;
@@ -79,9 +85,9 @@ Eigen::Matrix<double, 3, 2> texelJacobian(const SurfaceTiles& tiles, std::uint32
 // featureScale f multiplies c_ij by f_i * f_j (the geometric mean of the two
 // texels' rates f^2).
 // A step into an unglued tile edge (an open boundary) has coefficient 0: zero
-// flux. Degenerate texels are guarded: an area below 5% of the surface's
-// median texel area, and a centre distance below 0.2 of the median texel
-// width, count as that floor. The few texels folded or squeezed where a
+// flux. Degenerate texels are guarded: an area below kFloorArea of the
+// surface's median texel area, and a centre distance below kFloorDistance of
+// the median texel width, count as that floor. The few texels folded or squeezed where a
 // simplified triangle spans a smaller feature would otherwise force a time
 // step hundreds of times smaller; with the floors the largest coefficient sum
 // stayed within some 20x the median on the sample meshes, and since the tiles'
