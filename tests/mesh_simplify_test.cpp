@@ -107,6 +107,17 @@ TEST(MeshSimplify, PartsFarApartEachKeepTheirShareOfTheBudget) {
     }
 }
 
+// A larger budget must not fall off a cliff: meshoptimizer at many times the
+// target once "succeeded" on this scan by removing only slivers (4,000
+// asked, 30,374 kept: 91,122 tiles).
+TEST(MeshSimplify, AScanAskedForALargerBudgetIsStillSimplifiedToIt) {
+    SimplifyStats stats;
+    const TriangleMesh simplified = simplifyForTiles(scan(), 4000, &stats);
+    EXPECT_TRUE(stats.simplified);
+    EXPECT_LE(simplified.triangles.size(), 9000u);
+    expectSameTopology(scan(), simplified);
+}
+
 TEST(MeshSimplify, TilesAreBuiltOnTheScanWithinTheAutomaticBudget) {
     TileOptions options;
     options.tileSize = 4;
