@@ -17,6 +17,7 @@
 #include "core/mesh/mesh_repair.hpp"
 #include "core/mesh/mesh_report.hpp"
 #include "core/mesh/mesh_samples.hpp"
+#include "core/surface/surface_setup.hpp"
 
 namespace morphogen::cli {
 
@@ -44,7 +45,12 @@ void meshInfo(const MeshInfoFlags& f) {
     if (!f.mergeDistance.empty())
         repair.mergeDistance =
             numberFlag("--merge-distance", f.mergeDistance, 0, kMaxMergeDistance);
-    const LoadedMesh loaded = loadMesh(f.file, repair);
+    // As render loads it: a file, or a sample:NAME generated in memory.
+    SurfaceSpec spec;
+    spec.mesh = f.file;
+    spec.repair = repair.enabled;
+    spec.mergeDistance = repair.mergeDistance;
+    const LoadedMesh loaded = loadSurfaceMesh(spec, "");
     const double loadSeconds = secondsSince(start);
     const Clock::time_point checkStart = Clock::now();
     const MeshReport report = checkMesh(loaded.mesh);
