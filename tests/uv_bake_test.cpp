@@ -167,3 +167,32 @@ TEST(UvBake, UvsAreReadFromGlbPrimitives) {
     writeGlb(torus, {}, path);
     EXPECT_FALSE(readUvMesh(path).has_value());
 }
+
+// glTF's normal textures have +Y up the image, and where TANGENT is ignored
+// (Blender's importer) the frame is MikkTSpace's from the UVs, its bitangent
+// up the image too: the baked tangents' bitangent must point up the image
+// (towards -v), and the normal map lean against the height's slope that way.
+TEST(UvBake, TheNormalMapAndTangentsFollowGltfsYUp) {
+    const Baked b = bakeTorus(128);
+    // Per triangle, where +v runs on the surface (Lengyel's tdir); the
+    // bitangent w * cross(n, t) of each of its vertices against it.
+    int against = 0, along = 0;
+    for (const auto& t : b.mesh.triangles) {
+        const Eigen::Vector3f &p0 = b.mesh.positions[t[0]], &p1 = b.mesh.positions[t[1]],
+                              &p2 = b.mesh.positions[t[2]];
+        const Eigen::Vector2f &w0 = b.mesh.uvs[t[0]], &w1 = b.mesh.uvs[t[1]],
+                              &w2 = b.mesh.uvs[t[2]];
+        const float du1 = w1.x() - w0.x(), dv1 = w1.y() - w0.y();
+        const float du2 = w2.x() - w0.x(), dv2 = w2.y() - w0.y();
+        const float det = du1 * dv2 - du2 * dv1;
+        if (std::abs(det) < 1e-12f)
+            continue;
+        const Eigen::Vector3f alongV = ((p2 - p0) * du1 - (p1 - p0) * du2) / det;
+        for (std::uint32_t v : t) {
+            const Eigen::Vector4f& tan = b.result.tangents[v];
+            const Eigen::Vector3f bitangent = tan.w() * b.result.normals[v].cross(tan.head<3>());
+            (bitangent.dot(alongV) < 0 ? against : along) += 1;
+        }
+    }
+    EXPECT_GT(against, 20 * std::max(along, 1)) << against << " against +v, " << along << " along";
+}

@@ -55,7 +55,7 @@ Layout inModelUvs(const UvMesh& uvs, const SurfaceTiles& tiles, const SurfaceCol
     out.normal = uvNormalMap(texels, out.heightMap, relief * double(spec.normalStrength),
                              spec.normalFormat == NormalFormat::DirectX);
     // The GLB is what `--out model.glb` writes: its relief follows the display.
-    RgbaImage glbNormals = uvNormalMap(texels, texels.height, relief * colours.relief, true);
+    RgbaImage glbNormals = uvNormalMap(texels, texels.height, relief * colours.relief, false);
     out.model =
         uvBakedMesh(uvs, RgbaImage{texels.size, texels.size, texels.colour}, std::move(glbNormals));
     out.albedo = std::move(texels.colour);

@@ -157,7 +157,10 @@ void vertexFrames(const UvMesh& mesh, std::vector<Eigen::Vector3f>& normals,
         if (!(t.norm() > 1e-12f))
             t = nv.unitOrthogonal();
         t.normalize();
-        const float w = nv.cross(t).dot(tan2[v]) < 0 ? -1.0f : 1.0f;
+        // The bitangent w * cross(n, t) runs along -v, up the image: glTF's
+        // "+Y is up" for normal textures, and the frame MikkTSpace builds from
+        // the UVs where TANGENT is ignored (Blender's importer).
+        const float w = nv.cross(t).dot(tan2[v]) < 0 ? 1.0f : -1.0f;
         tangents[v] = Eigen::Vector4f(t.x(), t.y(), t.z(), w);
     }
 }
@@ -355,9 +358,9 @@ RgbaImage uvNormalMap(const UvTexels& texels, const std::vector<float>& height, 
 TexturedMesh bakeIntoUvs(const UvMesh& mesh, const SurfaceTiles& tiles,
                          const SurfaceColours& colours, const UvBakeOptions& options) {
     UvTexels texels = sampleIntoUvs(mesh, tiles, colours, options);
-    // The tangents' bitangent runs along +v, so the normal map's y runs down the image.
+    // The tangents' bitangent runs up the image, and so does the normal map's y.
     RgbaImage normals =
-        uvNormalMap(texels, texels.height, uvRelief(tiles, options.bump) * colours.relief, true);
+        uvNormalMap(texels, texels.height, uvRelief(tiles, options.bump) * colours.relief, false);
     return uvBakedMesh(mesh, RgbaImage{texels.size, texels.size, std::move(texels.colour)},
                        std::move(normals));
 }

@@ -60,7 +60,7 @@ UvTexels sampleIntoUvs(const UvMesh& mesh, const SurfaceTiles& tiles, const Surf
 RgbaImage uvNormalMap(const UvTexels& texels, const std::vector<float>& height, double relief,
                       bool yDown);
 
-// `mesh` with its vertex normals and tangents (the bitangent along +v, as
+// `mesh` with its vertex normals and tangents (the bitangent along -v, up the image, as
 // bakeIntoUvs's normal map expects) and the two textures.
 TexturedMesh uvBakedMesh(const UvMesh& mesh, RgbaImage baseColour, RgbaImage normalMap);
 
