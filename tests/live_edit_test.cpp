@@ -407,7 +407,7 @@ TEST(LiveEdit, ModelSpaceStrokesFitAnyModel) {
         s.surface.tiles = 300;
         s.surface.tileSize = 4;
         nlohmann::json j = sessionToJson(s);
-        j["edits"] = {stroke};
+        j["edits"] = nlohmann::json::array({stroke});
         Session placed = fromJson(j);
         ASSERT_TRUE(placed.edits[0].stroke && placed.edits[0].stroke->modelBox);
         const SurfaceSetup setup = setUpSurface(placed);
