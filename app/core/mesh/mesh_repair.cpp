@@ -151,43 +151,37 @@ double areaOf(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& t) {
 // Removes components (triangles joined through vertices) whose area is below
 // kSpeckAreaFraction of the whole; counts them and their triangles.
 void removeSpecks(TriangleMesh& mesh, RepairStats& stats) {
-    std::vector<std::uint32_t> parent(mesh.positions.size());
-    std::iota(parent.begin(), parent.end(), 0u);
-    const auto find = [&](std::uint32_t v) {
-        while (parent[v] != v)
-            v = parent[v] = parent[parent[v]];
-        return v;
-    };
-    for (const auto& t : mesh.triangles)
-        for (int k = 1; k < 3; ++k) {
-            const std::uint32_t a = find(t[0]), b = find(t[k]);
-            if (a != b)
-                parent[std::max(a, b)] = std::min(a, b);
-        }
-    std::unordered_map<std::uint32_t, double> area;
-    double total = 0;
-    for (const auto& t : mesh.triangles) {
-        const double a = areaOf(mesh, t);
-        area[find(t[0])] += a;
-        total += a;
-    }
-    if (!(total > 0) || area.size() < 2)
+    const std::vector<std::vector<std::uint32_t>> pieces = componentTriangles(mesh);
+    if (pieces.size() < 2)
         return;
-    std::unordered_map<std::uint32_t, char> speck;
-    for (const auto& [root, a] : area)
-        if (a < kSpeckAreaFraction * total) {
-            speck[root] = 1;
-            ++stats.specks;
+    std::vector<double> area(pieces.size(), 0.0);
+    double total = 0;
+    for (std::size_t p = 0; p < pieces.size(); ++p)
+        for (std::uint32_t t : pieces[p]) {
+            const double a = areaOf(mesh, mesh.triangles[t]);
+            area[p] += a;
+            total += a;
         }
-    if (speck.empty())
+    if (!(total > 0))
+        return;
+    std::vector<char> drop(mesh.triangles.size(), 0);
+    bool any = false;
+    for (std::size_t p = 0; p < pieces.size(); ++p)
+        if (area[p] < kSpeckAreaFraction * total) {
+            ++stats.specks;
+            any = true;
+            for (std::uint32_t t : pieces[p])
+                drop[t] = 1;
+        }
+    if (!any)
         return;
     std::size_t out = 0;
-    for (const auto& t : mesh.triangles) {
-        if (speck.count(find(t[0]))) {
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        if (drop[t]) {
             ++stats.speckTriangles;
             continue;
         }
-        mesh.triangles[out++] = t;
+        mesh.triangles[out++] = mesh.triangles[t];
     }
     mesh.triangles.resize(out);
 }

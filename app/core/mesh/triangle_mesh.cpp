@@ -1,6 +1,8 @@
 #include "core/mesh/triangle_mesh.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <numeric>
 
 #include <Eigen/Geometry>
 #include <meshoptimizer.h>
@@ -114,6 +116,33 @@ std::size_t orientConsistently(TriangleMesh& mesh) {
         if (o.flip[t])
             std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
     return o.flipped;
+}
+
+std::vector<std::vector<std::uint32_t>> componentTriangles(const TriangleMesh& mesh) {
+    std::vector<std::uint32_t> parent(mesh.positions.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto find = [&](std::uint32_t v) {
+        while (parent[v] != v)
+            v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (const auto& t : mesh.triangles)
+        for (int k = 1; k < 3; ++k) {
+            const std::uint32_t a = find(t[0]), b = find(t[k]);
+            if (a != b)
+                parent[std::max(a, b)] = std::min(a, b);
+        }
+    std::vector<std::uint32_t> slot(mesh.positions.size(), UINT32_MAX);
+    std::vector<std::vector<std::uint32_t>> out;
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+        const std::uint32_t root = find(mesh.triangles[t][0]);
+        if (slot[root] == UINT32_MAX) {
+            slot[root] = std::uint32_t(out.size());
+            out.emplace_back();
+        }
+        out[slot[root]].push_back(t);
+    }
+    return out;
 }
 
 } // namespace morphogen

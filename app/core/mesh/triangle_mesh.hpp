@@ -34,6 +34,10 @@ Eigen::Vector3d doubleAreaVector(const TriangleMesh& mesh, std::size_t t);
 double triangleArea(const TriangleMesh& mesh, std::size_t t);
 double surfaceArea(const TriangleMesh& mesh);
 
+// The triangles of each piece joined through shared vertices (a union-find
+// over the vertices), in the order of each piece's first triangle.
+std::vector<std::vector<std::uint32_t>> componentTriangles(const TriangleMesh& mesh);
+
 // What welding changed (weldVertices).
 struct WeldStats {
     std::size_t verticesBefore = 0;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <numeric>
 #include <vector>
 
 #include <meshoptimizer.h>
@@ -53,35 +52,6 @@ TriangleMesh compacted(const TriangleMesh& mesh, const std::vector<std::uint32_t
     out.triangles.reserve(indices.size() / 3);
     for (std::size_t i = 0; i + 2 < indices.size(); i += 3)
         out.triangles.push_back({remap[indices[i]], remap[indices[i + 1]], remap[indices[i + 2]]});
-    return out;
-}
-
-// The triangles of each connected component (sharing vertices), in the order
-// of their first triangle.
-std::vector<std::vector<std::uint32_t>> componentTriangles(const TriangleMesh& mesh) {
-    std::vector<std::uint32_t> parent(mesh.positions.size());
-    std::iota(parent.begin(), parent.end(), 0u);
-    const auto find = [&](std::uint32_t v) {
-        while (parent[v] != v)
-            v = parent[v] = parent[parent[v]];
-        return v;
-    };
-    for (const auto& t : mesh.triangles)
-        for (int k = 1; k < 3; ++k) {
-            const std::uint32_t a = find(t[0]), b = find(t[k]);
-            if (a != b)
-                parent[std::max(a, b)] = std::min(a, b);
-        }
-    std::vector<std::uint32_t> slot(mesh.positions.size(), UINT32_MAX);
-    std::vector<std::vector<std::uint32_t>> out;
-    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-        const std::uint32_t root = find(mesh.triangles[t][0]);
-        if (slot[root] == UINT32_MAX) {
-            slot[root] = std::uint32_t(out.size());
-            out.emplace_back();
-        }
-        out[slot[root]].push_back(t);
-    }
     return out;
 }
 
