@@ -57,7 +57,9 @@ void main() {
     float wet = clamp((0.7 - roughness) / (0.7 - 0.08), 0.0, 1.0);
     vec3 lit = mix(base, base * 0.82, wet) * (0.3 + 0.7 * diffuse);
     float specular = mix(0.18 * pow(nh, 40.0), 1.1 * pow(nh, 300.0), wet);
-    float fresnel = 0.02 + 0.98 * pow(1.0 - max(dot(normal, view), 0.0), 5.0);
+    // Clamped: where the normal faces the eye, rounding can put the dot a hair
+    // over 1, and pow of a negative base is undefined (NaN on llvmpipe).
+    float fresnel = 0.02 + 0.98 * pow(clamp(1.0 - dot(normal, view), 0.0, 1.0), 5.0);
     vec3 reflection = environment(reflect(-view, normal));
     outColour = vec4(lit + wet * (mix(0.1, 1.0, fresnel) * reflection - 0.1 * lit) + specular, 1.0);
 }

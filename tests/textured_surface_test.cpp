@@ -50,12 +50,12 @@ TEST(TexturedSurface, MeshFramesAndUvs) {
         EXPECT_NEAR(normal.norm(), 1.0f, 1e-5f);
         EXPECT_NEAR(tangent.norm(), 1.0f, 1e-5f);
         EXPECT_NEAR(tangent.dot(normal), 0.0f, 1e-5f);
-        // The tangent follows +u, the bitangent +v, along the grid.
+        // The tangent follows +u, the bitangent -v (up the image: glTF's +Y up), along the grid.
         const Eigen::Vector3f bitangent = normal.cross(tangent) * mesh.tangents[k].w();
         const std::size_t right = i < n ? k + 1 : k, left = i < n ? k : k - 1;
         const std::size_t up = j < n ? k + n + 1 : k, down = j < n ? k : k - n - 1;
         EXPECT_GT(tangent.dot(mesh.positions[right] - mesh.positions[left]), 0.0f);
-        EXPECT_GT(bitangent.dot(mesh.positions[up] - mesh.positions[down]), 0.0f);
+        EXPECT_LT(bitangent.dot(mesh.positions[up] - mesh.positions[down]), 0.0f);
     }
     // Colours padded, normals flat without a height.
     EXPECT_EQ(mesh.baseColour.width, display.width());

@@ -30,7 +30,7 @@ struct Layout {
     TexturedMesh model;           // for model.glb
 };
 
-// OpenGL's green runs up the image; the bakes' y runs along +v, down it.
+// DirectX's green runs down the image; the bakes' y runs along -v, up it.
 void flipGreen(RgbaImage& image) {
     for (auto& t : image.texels)
         t[1] = std::uint8_t(255 - t[1]);
@@ -85,7 +85,7 @@ Layout inTheAtlas(const SurfaceTiles& tiles, const SurfaceColours& colours,
     const TexelFrames frames = texelFrames(tiles);
     out.normal = bakeNormalMap(atlas, display, cellHeight, frames,
                                look.bump * frames.meanTexelLength * spec.normalStrength);
-    if (spec.normalFormat == NormalFormat::OpenGl)
+    if (spec.normalFormat == NormalFormat::DirectX)
         flipGreen(out.normal);
     for (std::size_t p = 0; p < out.albedo.size(); ++p)
         if (!out.covered[p])

@@ -55,7 +55,10 @@ Eigen::Vector4f gridTangent(const SurfaceTiles& tiles, int tile, int i, int j) {
     if (tangent.squaredNorm() < 1e-20f) // degenerate: any direction in the plane
         tangent = normal.unitOrthogonal();
     tangent.normalize();
-    const float w = normal.cross(tangent).dot(dv) < 0 ? -1.0f : 1.0f;
+    // The bitangent w * cross(normal, tangent) runs along -v, up the image:
+    // glTF's "+Y is up" for normal textures, the frame MikkTSpace builds where
+    // TANGENT is ignored (Blender's importer).
+    const float w = normal.cross(tangent).dot(dv) < 0 ? 1.0f : -1.0f;
     return {tangent.x(), tangent.y(), tangent.z(), w};
 }
 
@@ -162,7 +165,7 @@ TexelFrames texelFrames(const SurfaceTiles& tiles) {
                     tangent = normal.unitOrthogonal();
                 tangent.normalize();
                 Eigen::Vector3f bitangent = normal.cross(tangent);
-                if (bitangent.dot(pv) < 0)
+                if (bitangent.dot(pv) > 0)
                     bitangent = -bitangent;
                 frames.jacobianU[cell] = pu;
                 frames.jacobianV[cell] = pv;

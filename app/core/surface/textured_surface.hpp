@@ -27,7 +27,8 @@ struct TexturedMesh {
     std::vector<Eigen::Vector3f> positions;
     std::vector<Eigen::Vector3f> normals; // unit
     // xyz: unit tangent along +u, orthogonal to the normal; w = +-1, the
-    // bitangent being w * cross(normal, tangent), along +v (glTF's TANGENT).
+    // bitangent being w * cross(normal, tangent), along -v, up the image (glTF's TANGENT; its
+    // normal textures have +Y up).
     std::vector<Eigen::Vector4f> tangents;
     std::vector<Eigen::Vector2f> uvs; // in [0, 1], inside the padded atlas
     std::vector<std::array<std::uint32_t, 3>> triangles;
@@ -75,7 +76,7 @@ TexturedMesh texturedSurface(const SurfaceTiles& tiles, const SurfaceColours& co
 // Jacobian's columns (the means of the texel's two edges along u and along
 // v, world units per texel) and the orthonormal frame the normal map is in
 // (normal: the mean of the corners'; tangent: along u in the tangent plane;
-// bitangent: perpendicular to both, on the side of +v, as the renderer
+// bitangent: perpendicular to both, on the side of -v (up the image), as the renderer
 // rebuilds it from the vertex tangents).
 struct TexelFrames {
     std::vector<Eigen::Vector3f> jacobianU, jacobianV, tangent, bitangent, normal;
