@@ -102,10 +102,7 @@ nlohmann::json manifest(const Session& session, const Layout& layout, bool model
     json files = json::array();
     const auto file = [&](const char* name, const std::string& meaning, const char* colourSpace,
                           const json& depth) {
-        files.push_back({{"file", name},
-                         {"meaning", meaning},
-                         {"colour_space", colourSpace},
-                         {"bit_depth", depth}});
+        files.push_back(textureSetFileEntry(name, meaning, colourSpace, depth));
     };
     file("albedo.png",
          "colour map '" + session.colormap.name + "' of chemical '" + chemical +

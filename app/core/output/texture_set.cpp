@@ -110,6 +110,14 @@ void prepareTextureSetDir(const std::string& dir) {
     checkWritable((fs::path(dir) / "texture_set.json").string());
 }
 
+nlohmann::json textureSetFileEntry(const std::string& name, const std::string& meaning,
+                                   const std::string& colourSpace, const nlohmann::json& bitDepth) {
+    return {{"file", name},
+            {"meaning", meaning},
+            {"colour_space", colourSpace},
+            {"bit_depth", bitDepth}};
+}
+
 nlohmann::json textureSetManifest(const Session& session, int chemical, const HeightLevels& levels,
                                   float observedMin, float observedMax) {
     const ReactionModel& model = session.outputModel();
@@ -119,10 +127,7 @@ nlohmann::json textureSetManifest(const Session& session, int chemical, const He
     json files = json::array();
     const auto file = [&](const char* name, const std::string& meaning, const char* colourSpace,
                           const json& depth) {
-        files.push_back({{"file", name},
-                         {"meaning", meaning},
-                         {"colour_space", colourSpace},
-                         {"bit_depth", depth}});
+        files.push_back(textureSetFileEntry(name, meaning, colourSpace, depth));
     };
     file("albedo.png",
          "colour map '" + session.colormap.name + "' of chemical '" + chem +

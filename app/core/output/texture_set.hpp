@@ -63,6 +63,11 @@ void writeTextureSet(const std::string& dir, const State& state, const Session& 
 void writeTextureSet(const std::string& dir, const State& state, const Session& session,
                      OutputFiles& files);
 
+// One entry of a manifest's "files": the file, what it holds, its colour space
+// and bit depth (null for a file that is no image).
+nlohmann::json textureSetFileEntry(const std::string& name, const std::string& meaning,
+                                   const std::string& colourSpace, const nlohmann::json& bitDepth);
+
 // The manifest texture_set.json holds (exposed for tests).
 nlohmann::json textureSetManifest(const Session& session, int chemical, const HeightLevels& levels,
                                   float observedMin, float observedMax);
