@@ -199,7 +199,6 @@ SurfaceTiles buildSurfaceTiles(const TriangleMesh& full, const TileOptions& opti
         if (gapAgain.max >= gap.max)
             break; // no closer (a budget far too small for the shape): keep the tiles before
         follow.insertions += f.insertions;
-        follow.rounds += f.rounds;
         follow.gapAfter = gapAgain.max;
         out = std::move(again);
         gap = gapAgain;

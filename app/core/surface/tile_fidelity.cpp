@@ -152,7 +152,6 @@ FollowStats followModel(TriangleMesh& mesh, const TriangleMesh& full, double tol
         if (r == 0)
             s.gapBefore = farthest / diagonal;
         s.gapAfter = farthest / diagonal;
-        s.rounds = r + 1;
         if (n == 0)
             break;
         s.insertions += n;

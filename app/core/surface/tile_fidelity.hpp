@@ -14,7 +14,6 @@ namespace morphogen {
 
 struct FollowStats {
     std::size_t insertions = 0; // model vertices put back
-    int rounds = 0;
     double gapBefore = 0; // the farthest model vertex from the mesh, a fraction of the diagonal
     double gapAfter = 0;
 };

@@ -251,7 +251,6 @@ UvTexels sampleIntoUvs(const UvMesh& mesh, const SurfaceTiles& tiles, const Surf
                 out.covered[i] = 1;
             }
     }
-    out.island = out.covered;
 
     // Dilation: each ring of empty texels next to covered ones takes their mean.
     for (int ring = 0; ring < options.padding; ++ring) {

@@ -44,7 +44,6 @@ struct UvTexels {
     std::vector<float> value;         // the `value` field given to sampleIntoUvs, if any
     std::vector<float> worldPerTexel; // surface length per texel of the layout
     std::vector<char> covered;        // on an island or in its padding
-    std::vector<char> island;         // on an island (a triangle covers its centre)
 };
 
 // Samples the pattern into the UV layout as bakeIntoUvs does; `value`, when
