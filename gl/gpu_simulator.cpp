@@ -472,8 +472,9 @@ void GpuSimulator::setActiveTiles(const std::vector<int>& tiles) {
 
 void GpuSimulator::run(int steps) {
     bindAuxiliaryTextures();
-    if (!m_activeRects.empty()) {
-        // fromSession refuses the semi-implicit integrator on atlases.
+    // A semi-implicit step solves over the whole atlas: the active tiles'
+    // explicit step would be unstable at its dt.
+    if (!m_activeRects.empty() && m_k.integrator == Integrator::ExplicitEuler) {
         m_pingPong.runRects(m_program, steps, m_activeRects);
         return;
     }

@@ -366,7 +366,9 @@ void main() {
 // Semi-implicit, one relaxation sweep on (I - dt A) x = rhs: uState<t> holds
 // the current iterate, uRhs<t> the right-hand side; uOmega is each chemical's
 // Richardson weight, chosen from the kernel's symbol (Jacobi's for the
-// Laplacians).
+// Laplacians). On a weighted atlas, which has no symbol, each texel takes
+// Jacobi's own, 1 / (1 + dt r S) with S its weight sum: the sweep is then the
+// CPU's (rhs + dt r sides) / (1 + dt r S), up to rounding.
 uniform sampler2D uRhs0;
 #if STATE_TEXTURES > 1
 uniform sampler2D uRhs1;
@@ -375,16 +377,35 @@ uniform sampler2D uRhs1;
 uniform sampler2D uRhs2;
 #endif
 uniform vec4 uOmega[STATE_TEXTURES];
+#ifdef ATLAS_WEIGHTS
+// This texel's links and diagonals summed (the diffusion term's S).
+float weightSum() {
+    vec4 w = texelFetch(uWeights, ivec2(gl_FragCoord.xy), 0);
+    float sum = ((w.z + w.x) + w.w) + w.y;
+#ifdef ATLAS_CROSS
+    vec4 k = texelFetch(uCross, ivec2(gl_FragCoord.xy), 0);
+    sum += (k.x + k.y) + (k.z + k.w);
+#endif
+    return sum;
+}
+#define OMEGA(t) (1.0 / (1.0 + uDt * scale[t] * uDiffusion[t] * gWeightSum))
+#else
+#define OMEGA(t) uOmega[t]
+#endif
 void main() {
     vec2 uv = gl_FragCoord.xy * uInvSize;
     KEEP_FROZEN(uv)
+    ATLAS_TEXEL(uv)
     loadParams(uv);
     vec4 scale[STATE_TEXTURES];
     rateScale(scale);
+#ifdef ATLAS_WEIGHTS
+    float gWeightSum = weightSum();
+#endif
 #define SWEEP(t, state, rhs)                                                                          \
     {                                                                                              \
         vec4 x = texture(state, uv);                                                               \
-        outState[t] = clamp(x + uOmega[t] * (texture(rhs, uv) - x +                                 \
+        outState[t] = clamp(x + OMEGA(t) * (texture(rhs, uv) - x +                                  \
                                              uDt * scale[t] *                                      \
                                                  (STILL(t) ? vec4(0.0) : diffusion(state, t, uv, x))), \
                             uClampMin[t], uClampMax[t]);                                           \

@@ -68,8 +68,8 @@ if(NOT cpu_rows EQUAL 1)
 endif()
 
 # The surface rows alone (issue 11): mesh to atlas for the 81,920-triangle blob
-# with its phase times, and the holes atlas's throughput against a grid, each
-# with finite positive figures.
+# with its phase times, the holes atlas's throughput against a grid and a
+# session step's cost on three models, each with finite positive figures.
 execute_process(COMMAND ${MORPHOGEN} bench --seconds 0.01 --no-throughput --no-domains
   --no-convergence --no-memory --no-resolution --no-designer --json surface.json
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err WORKING_DIRECTORY "${WORK}")
@@ -95,5 +95,24 @@ foreach(i RANGE ${last})
   string(JSON substeps GET "${report}" surface throughput ${i} substeps)
   if(NOT fraction GREATER 0 OR substeps LESS 1)
     message(SEND_ERROR "surface throughput row ${i}: fraction ${fraction}, substeps ${substeps}")
+  endif()
+endforeach()
+# A session step's cost on three models, both integrators and a flat grid
+# (whichever is faster is a measurement, not checked here).
+string(JSON rows LENGTH "${report}" surface session_step)
+if(NOT rows EQUAL 3)
+  message(SEND_ERROR "want session-step rows for three models on the CPU, got ${rows}")
+endif()
+foreach(i RANGE 2)
+  foreach(key explicit_seconds_per_step semi_implicit_seconds_per_step grid_seconds_per_step
+              best_over_grid semi_implicit_speedup)
+    string(JSON value GET "${report}" surface session_step ${i} ${key})
+    if(NOT value GREATER 0)
+      message(SEND_ERROR "surface session_step row ${i}: ${key} is ${value}")
+    endif()
+  endforeach()
+  string(JSON substeps GET "${report}" surface session_step ${i} explicit_substeps)
+  if(substeps LESS 2)
+    message(SEND_ERROR "surface session_step row ${i}: ${substeps} explicit substeps (the models' texels need several)")
   endif()
 endforeach()

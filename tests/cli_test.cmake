@@ -698,6 +698,11 @@ run(2 "--perturb '1,2,3' is not accepted (X,Y,Z,R" render --preset turk_small_sp
 run(2 "--perturb '0,0,1,-1' is not accepted" render --preset turk_small_spots --mesh sample:sphere --out p.glb --perturb 0,0,1,-1)
 run(2 "--perturb needs a mesh" render --preset turk_small_spots --out p.png --perturb 0,0,1,0.2)
 run(2 "--perturb: no texel of the surface lies within 0.1 of (5, 5, 5)" render --preset turk_small_spots --mesh sample:sphere --tiles 60 --tile-size 4 --steps 20 --backend cpu --out p.glb --perturb 5,5,5,0.1)
+# ... said once the tiles are built, before the run's steps are spent.
+string(FIND "${last_stderr}" "render turk_small_spots" ran)
+if(NOT ran EQUAL -1)
+  message(SEND_ERROR "render --perturb that misses ran the session first: ${last_stderr}")
+endif()
 run(0 "localized RD re-settled after" render --preset turk_small_spots --mesh sample:sphere --tiles 60 --tile-size 4 --steps 400 --backend cpu --out p.glb --perturb 0,0,1,0.3)
 string(FIND "${last_stderr}" "phases it/s (tiles): A1 " at)
 if(at EQUAL -1)

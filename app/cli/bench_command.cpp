@@ -437,7 +437,8 @@ void addBenchCommand(CLI::App& app) {
                   "skip the atlas, localized-RD (plane and mesh) and batched-sweep rows");
     cmd->add_flag("--no-surface", flags->noSurface,
                   "skip the surface rows (mesh to atlas for an 82k-triangle model, throughput "
-                  "on the holes model's atlas against a flat grid)");
+                  "on the holes model's atlas against a flat grid, a session step's cost on three "
+                  "models with both integrators against a flat grid)");
     cmd->add_option("--memory-sizes", flags->memorySizes,
                     "sizes of the peak-memory renders, one process each (default 1024,2048,4096)");
     cmd->add_flag("--no-memory", flags->noMemory, "skip the peak-memory rows");

@@ -20,6 +20,7 @@
 #include "core/session/session.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/initial_state.hpp"
+#include "core/sim/segments.hpp"
 #include "core/surface/surface_setup.hpp"
 #include "gl/gpu_simulator.hpp"
 
@@ -48,16 +49,11 @@ struct TemporaryFile {
 // connectivity; projection: positions, Jacobians (the metric) and curvature;
 // weights: the diffusion weights and useAtlas), each timed from its start to
 // the next one's.
-nlohmann::json meshToAtlasRow() {
-    const TriangleMesh mesh = sampleMesh("blob", kLargeMeshLevel);
-    TemporaryFile file{(std::filesystem::temp_directory_path() /
-                        ("morphogen_bench_" + std::to_string(::getpid()) + ".obj"))
-                           .string()};
-    writeObj(mesh, file.path);
+nlohmann::json meshToAtlasRow(const TriangleMesh& mesh, const std::string& path) {
     std::fprintf(stderr, "bench: mesh to atlas, %zu triangles...\n", mesh.triangles.size());
 
     Session s = loadPreset("turk_large_spots");
-    s.surface.mesh = file.path;
+    s.surface.mesh = path;
     std::vector<std::pair<std::string, Clock::time_point>> marks;
     const auto start = Clock::now();
     // setUpSurface reports "projection" done (1) before it computes the
@@ -122,6 +118,8 @@ nlohmann::json throughputRows(const std::vector<std::pair<std::string, Make>>& b
     for (const int tileSize : {0, 16}) {
         Session onAtlas = loadPreset("surface_curvature_spots_holes");
         onAtlas.surface.tileSize = tileSize;
+        // The explicit kernel's throughput, whatever setUpSurface would choose.
+        onAtlas.integratorGiven = true;
         const SurfaceSetup setup = setUpSurface(onAtlas);
         const Atlas& atlas = *setup.tiles.atlas;
         const int substeps = weightedSubsteps(*setup.weights);
@@ -160,6 +158,72 @@ nlohmann::json throughputRows(const std::vector<std::pair<std::string, Make>>& b
     return rows;
 }
 
+// Seconds per session step of `s` (its last segment: substeps included).
+double secondsPerSessionStep(const Session& s, const Make& make, bool gpu, double seconds) {
+    const Segment segment = segmentsOf(s).back();
+    return double(segment.substeps) / sessionStepsPerSecond(segment.session, make, gpu, seconds);
+}
+
+// The cost of a session step on a model, both integrators, against a flat
+// grid with as many cells as the atlas has texels, each cell a texel's mean
+// side (its own explicit substeps; no coarse-to-fine): turk_large_spots on
+// the blob (5k triangles), the scan-like sample (30k) and the blob at level 6
+// (82k). A settled pattern takes about as many session steps on either
+// integrator (docs/surfaces.md), so these ratios are those of the time to it.
+nlohmann::json stepCostRows(const std::vector<std::pair<std::string, Make>>& backends,
+                            const std::string& largeMesh, double seconds) {
+    nlohmann::json rows = nlohmann::json::array();
+    std::printf("\n%-24s %-8s %8s %9s %12s %12s %10s %10s %9s\n", "session step", "backend",
+                "texels", "substeps", "explicit ms", "semi-impl ms", "grid ms", "x grid",
+                "speed-up");
+    const std::vector<std::pair<std::string, std::string>> models = {
+        {"blob (5k triangles)", "sample:blob"},
+        {"scan (30k)", "sample:scan"},
+        {"blob level 6 (82k)", largeMesh}};
+    for (const auto& [name, mesh] : models) {
+        Session onAtlas = loadPreset("turk_large_spots");
+        onAtlas.surface.mesh = mesh;
+        onAtlas.integratorGiven = true;
+        std::fprintf(stderr, "bench: session steps on %s...\n", name.c_str());
+        const SurfaceSetup setup = setUpSurface(onAtlas);
+        std::size_t used = 0;
+        for (std::uint32_t i = 0; i < setup.tiles.atlas->cellCount(); ++i)
+            used += setup.tiles.atlas->used(i) ? 1 : 0;
+        Session semi = onAtlas;
+        semi.integrator = Integrator::SemiImplicit;
+        Session grid = loadPreset("turk_large_spots");
+        const int side = int(std::lround(std::sqrt(double(used))));
+        grid.width = grid.height = side;
+        grid.length = side * setup.texelUnits;
+        grid.coarseToFine = false;
+        const int substeps = segmentsOf(onAtlas).back().substeps;
+        for (const auto& [backend, make] : backends) {
+            const bool gpu = backend == "gpu";
+            const double e = secondsPerSessionStep(onAtlas, make, gpu, seconds);
+            const double i = secondsPerSessionStep(semi, make, gpu, seconds);
+            const double g = secondsPerSessionStep(grid, make, gpu, seconds);
+            const double best = std::min(e, i);
+            std::printf("%-24s %-8s %8zu %9d %12.3f %12.3f %10.3f %10.2f %9.2f\n", name.c_str(),
+                        backend.c_str(), used, substeps, 1e3 * e, 1e3 * i, 1e3 * g, best / g,
+                        e / i);
+            std::fflush(stdout);
+            rows.push_back({{"mesh", name},
+                            {"backend", backend},
+                            {"texels", used},
+                            {"explicit_substeps", substeps},
+                            {"relaxation_passes", semi.relaxationPasses},
+                            {"explicit_seconds_per_step", e},
+                            {"semi_implicit_seconds_per_step", i},
+                            {"grid_side", side},
+                            {"grid_substeps", segmentsOf(grid).back().substeps},
+                            {"grid_seconds_per_step", g},
+                            {"best_over_grid", best / g},
+                            {"semi_implicit_speedup", e / i}});
+        }
+    }
+    return rows;
+}
+
 } // namespace
 
 nlohmann::json benchSurface(bool gpu, bool cpu, double seconds) {
@@ -170,7 +234,14 @@ nlohmann::json benchSurface(bool gpu, bool cpu, double seconds) {
     if (cpu)
         backends.emplace_back("cpu",
                               [](const Session& s) { return std::make_unique<CpuSimulator>(s); });
-    return {{"mesh_to_atlas", meshToAtlasRow()}, {"throughput", throughputRows(backends, seconds)}};
+    const TriangleMesh large = sampleMesh("blob", kLargeMeshLevel);
+    TemporaryFile file{(std::filesystem::temp_directory_path() /
+                        ("morphogen_bench_" + std::to_string(::getpid()) + ".obj"))
+                           .string()};
+    writeObj(large, file.path);
+    return {{"mesh_to_atlas", meshToAtlasRow(large, file.path)},
+            {"throughput", throughputRows(backends, seconds)},
+            {"session_step", stepCostRows(backends, file.path, seconds)}};
 }
 
 } // namespace morphogen::cli

@@ -62,17 +62,32 @@ void checkPerturbFlags(const PerturbFlags& flags, bool surface) {
         throw InputError("--perturb needs a mesh (--mesh or a session's \"surface\")");
 }
 
+namespace {
+
+// Lo's distort: +-2 on the first chemical, enough to wipe the features there.
+// Throws InputError naming --perturb when the ball reaches no texel.
+SurfacePerturbation perturbation(const PerturbFlags& flags, const Session& session,
+                                 const SurfaceSetup& setup) {
+    const std::array<double, 4> ball = parseBall(flags.ball);
+    return perturbSurface(setup.tiles, session.domain(),
+                          Eigen::Vector3f(float(ball[0]), float(ball[1]), float(ball[2])),
+                          float(ball[3]), 0, 2.0f, std::uint64_t(session.seed) + 1, "--perturb");
+}
+
+} // namespace
+
+void checkPerturbBall(const PerturbFlags& flags, const Session& session,
+                      const SurfaceSetup& setup) {
+    if (!flags.ball.empty())
+        perturbation(flags, session, setup);
+}
+
 void applyPerturbation(const PerturbFlags& flags, const Session& session, const SurfaceSetup& setup,
                        const SimulatorFactory& make, RunResult& result) {
     if (flags.ball.empty())
         return;
-    const std::array<double, 4> ball = parseBall(flags.ball);
     const Atlas& atlas = *setup.tiles.atlas;
-    // Lo's distort: +-2 on the first chemical, enough to wipe the features there.
-    const SurfacePerturbation p =
-        perturbSurface(setup.tiles, session.domain(),
-                       Eigen::Vector3f(float(ball[0]), float(ball[1]), float(ball[2])),
-                       float(ball[3]), 0, 2.0f, std::uint64_t(session.seed) + 1, "--perturb");
+    const SurfacePerturbation p = perturbation(flags, session, setup);
     // As the run stepped: dt split into the weighted atlas's substeps.
     const Session running = segmentSessions(session).back();
     const int substeps = std::max(1, segmentsOf(session).back().substeps);

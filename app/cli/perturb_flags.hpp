@@ -23,6 +23,9 @@ void addPerturbFlags(CLI::App& command, PerturbFlags& flags);
 // Checks the flag before the run: four finite numbers, R > 0, and a mesh to
 // perturb. Throws InputError naming --perturb.
 void checkPerturbFlags(const PerturbFlags& flags, bool surface);
+// Once the tiles are built, before the run: the ball must reach a texel of
+// the surface (the run's minutes are not spent on a ball that misses).
+void checkPerturbBall(const PerturbFlags& flags, const Session& session, const SurfaceSetup& setup);
 
 // Applies the perturbation to result.state on a simulator of `session` and
 // relaxes it locally; result.state becomes the relaxed state. Prints the

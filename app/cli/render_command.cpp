@@ -184,8 +184,10 @@ Session buildSession(const RenderFlags& f) {
     s.length /= f.scale;
     if (f.noCoarseToFine)
         s.coarseToFine = false;
-    if (!f.integrator.empty())
+    if (!f.integrator.empty()) {
         s.integrator = parseFlag("--integrator", f.integrator, parseIntegrator, integratorNames());
+        s.integratorGiven = true;
+    }
     if (!f.relaxationPasses.empty())
         s.relaxationPasses =
             int(integerFlag("--relaxation-passes", f.relaxationPasses, 1, kMaxRelaxationPasses));
@@ -299,6 +301,7 @@ void render(const RenderFlags& flags) {
         });
         tiling.finish("done");
         std::fprintf(stderr, "morphogen: %s\n", surfaceSetup->describe().c_str());
+        checkPerturbBall(f.perturb, session, *surfaceSetup);
     }
     SettleRun settle(f.settle, session, f.sessionFile.empty(), !f.steps.empty());
     checkStability(session);

@@ -378,6 +378,7 @@ Session sessionFromJson(const json& root, const std::string& source) {
         s.gravity = gravityFromJson(top, *gravity);
 
     s.integrator = top.choice("integrator", s.integrator, parseIntegrator, integratorNames());
+    s.integratorGiven = top.find("integrator") != nullptr;
     // "jacobi_sweeps" is the name sessions written before the rename use.
     s.relaxationPasses =
         int(top.integer("jacobi_sweeps", s.relaxationPasses, 1, kMaxRelaxationPasses));

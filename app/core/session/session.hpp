@@ -87,6 +87,11 @@ struct Session {
     float dt = 1.0f;
     int steps = 1000;
     Integrator integrator = Integrator::ExplicitEuler;
+    // Whether the session's JSON or a flag chose the integrator: a surface
+    // left to choose runs semi-implicit where explicit steps would need more
+    // substeps than a semi-implicit step's passes (setUpSurface). Written
+    // sessions always name it, so they replay as they ran.
+    bool integratorGiven = false;
     int relaxationPasses = 8; // SemiImplicit: sweeps per step
     // Coarse-to-fine levels, coarsest first; the last must be width x height.
     // Empty: one level of `steps` at width x height.

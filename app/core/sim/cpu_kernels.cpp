@@ -280,20 +280,95 @@ MORPHOGEN_VECTOR_CLONES void stepRows(const StepConstants& k, const State& in, S
     }
 }
 
+// One row of a weighted atlas padded by halos (PaddedAtlasStep): its weight
+// planes' pointers, and per texel the weights' sum S and a chemical's
+// weighted neighbours ("sides"), summed in the order both backends use
+// (StepConstants::weightPlanes). Cross: the diagonals too
+// (StepConstants::diagonalPlanes), a texel's diagonals being the padded
+// grid's; every read is inside the texture (the outer rows and columns 0 and
+// w-1 are halo, never stepped).
+template <bool Cross> struct WeightRow {
+    const float* px;
+    const float* py;
+    const float* mx;
+    const float* my;
+    // Diagonal planes (-x,-y), (+x,-y), (-x,+y), (+x,+y); unread without Cross.
+    const float* mm = nullptr;
+    const float* pm = nullptr;
+    const float* mp = nullptr;
+    const float* pp = nullptr;
+
+    WeightRow(const StepConstants& k, std::size_t cells, std::size_t row) {
+        const float* planes = k.weightPlanes->data();
+        px = planes + row;
+        py = planes + cells + row;
+        mx = planes + 2 * cells + row;
+        my = planes + 3 * cells + row;
+        if constexpr (Cross) {
+            const float* diagonals = k.diagonalPlanes->data();
+            mm = diagonals + row;
+            pm = diagonals + cells + row;
+            mp = diagonals + 2 * cells + row;
+            pp = diagonals + 3 * cells + row;
+        }
+    }
+};
+
+// Texel x's weights, read once for all its chemicals.
+struct TexelWeights {
+    float l, r, d, u;                     // links -x, +x, -y, +y
+    float k0 = 0, k1 = 0, k2 = 0, k3 = 0; // diagonals
+    float sum;
+};
+
+template <bool Cross> MORPHOGEN_INLINE TexelWeights texelWeights(const WeightRow<Cross>& w, int x) {
+    TexelWeights t;
+    t.l = w.mx[x];
+    t.r = w.px[x];
+    t.d = w.my[x];
+    t.u = w.py[x];
+    t.sum = ((t.l + t.r) + t.d) + t.u;
+    if constexpr (Cross) {
+        t.k0 = w.mm[x];
+        t.k1 = w.pm[x];
+        t.k2 = w.mp[x];
+        t.k3 = w.pp[x];
+        t.sum += (t.k0 + t.k1) + (t.k2 + t.k3);
+    }
+    return t;
+}
+
+// Sum over texel x's neighbours of weight times value, for one chemical's rows.
+template <bool Cross>
+MORPHOGEN_INLINE float weightedSides(const TexelWeights& t, const float* mid, const float* down,
+                                     const float* up, int x) {
+    float sides = ((t.l * mid[x - 1] + t.r * mid[x + 1]) + t.d * down[x]) + t.u * up[x];
+    if constexpr (Cross)
+        sides += (t.k0 * down[x - 1] + t.k1 * down[x + 1]) + (t.k2 * up[x - 1] + t.k3 * up[x + 1]);
+    return sides;
+}
+
+// Chemical c's rows y - 1, y and y + 1 (clamped) of `state`.
+struct RowTriple {
+    const float* down;
+    const float* mid;
+    const float* up;
+};
+MORPHOGEN_INLINE RowTriple rowTriple(const State& state, int c, int y) {
+    const std::size_t w = std::size_t(state.width());
+    const float* plane = state.plane(c);
+    return {plane + std::size_t(y > 0 ? y - 1 : y) * w, plane + std::size_t(y) * w,
+            plane + std::size_t(y < state.height() - 1 ? y + 1 : y) * w};
+}
+
 // Explicit Euler on rows [y0, y1), columns [x0, x1), of a weighted atlas
-// (StepConstants::weightPlanes): stepRows with the weighted 5-point term, the
-// four coefficients streamed unit-stride from their planes. It runs on the
-// tiles padded by their halos (PaddedAtlasStep), so every read is inside the
-// texture (columns 0 and w-1 and the outer rows are halo, never stepped).
-// Cross: the weights' diagonals too (StepConstants::diagonalPlanes), a
-// texel's diagonals being the padded grid's.
+// padded by halos: stepRows with the weighted term (WeightRow), the
+// coefficients streamed unit-stride from their planes.
 template <class Cell, bool Cross>
 MORPHOGEN_VECTOR_CLONES void stepRowsWeighted(const StepConstants& k, const State& in, State& out,
                                               int y0, int y1, int x0, int x1) {
     constexpr int n = Cell::kChemicals;
-    const int w = in.width(), h = in.height();
-    const std::size_t cells = in.cellCount();
-    const float* planes = k.weightPlanes->data();
+    const int w = in.width();
     const float dt = k.dt;
     float rate[n], lo[n], hi[n];
     for (int c = 0; c < n; ++c) {
@@ -304,65 +379,109 @@ MORPHOGEN_VECTOR_CLONES void stepRowsWeighted(const StepConstants& k, const Stat
     const Cell cell(k.params.data());
     for (int y = y0; y < y1; ++y) {
         const std::size_t row = std::size_t(y) * std::size_t(w);
-        const std::size_t below = std::size_t(y > 0 ? y - 1 : y) * std::size_t(w);
-        const std::size_t above = std::size_t(y < h - 1 ? y + 1 : y) * std::size_t(w);
-        const float* cpx = planes + row;
-        const float* cpy = planes + cells + row;
-        const float* cmx = planes + 2 * cells + row;
-        const float* cmy = planes + 3 * cells + row;
-        // Diagonal planes (-x,-y), (+x,-y), (-x,+y), (+x,+y); unread without Cross.
-        const float* kmm = nullptr;
-        const float* kpm = nullptr;
-        const float* kmp = nullptr;
-        const float* kpp = nullptr;
-        if constexpr (Cross) {
-            const float* diagonals = k.diagonalPlanes->data();
-            kmm = diagonals + row;
-            kpm = diagonals + cells + row;
-            kmp = diagonals + 2 * cells + row;
-            kpp = diagonals + 3 * cells + row;
-        }
-        const float* mid[n];
-        const float* down[n];
-        const float* up[n];
+        const WeightRow<Cross> weights(k, in.cellCount(), row);
+        RowTriple rows[n];
         float* next[n];
         for (int c = 0; c < n; ++c) {
-            mid[c] = in.plane(c) + row;
-            down[c] = in.plane(c) + below;
-            up[c] = in.plane(c) + above;
+            rows[c] = rowTriple(in, c, y);
             next[c] = out.plane(c) + row;
         }
         // A lambda, so that conc and dcdt are not omp simd's per-lane arrays.
         const auto texel = [&](int x) MORPHOGEN_INLINE_LAMBDA {
             float conc[n], dcdt[n];
             for (int c = 0; c < n; ++c)
-                conc[c] = mid[c][x];
+                conc[c] = rows[c].mid[x];
             cell.react(conc, dcdt);
-            const float a = cmx[x], b = cpx[x], d = cmy[x], e = cpy[x];
-            float sum = ((a + b) + d) + e;
-            float k0 = 0.0f, k1 = 0.0f, k2 = 0.0f, k3 = 0.0f;
-            if constexpr (Cross) {
-                k0 = kmm[x];
-                k1 = kpm[x];
-                k2 = kmp[x];
-                k3 = kpp[x];
-                sum += (k0 + k1) + (k2 + k3);
-            }
+            const TexelWeights t = texelWeights(weights, x);
 #pragma GCC unroll 12
             for (int c = 0; c < n; ++c) {
-                float sides =
-                    ((a * mid[c][x - 1] + b * mid[c][x + 1]) + d * down[c][x]) + e * up[c][x];
-                if constexpr (Cross)
-                    sides += (k0 * down[c][x - 1] + k1 * down[c][x + 1]) +
-                             (k2 * up[c][x - 1] + k3 * up[c][x + 1]);
+                const float sides =
+                    weightedSides<Cross>(t, rows[c].mid, rows[c].down, rows[c].up, x);
                 const float diffusion =
-                    Cell::diffuses(c) ? rate[c] * (sides - sum * conc[c]) : 0.0f;
+                    Cell::diffuses(c) ? rate[c] * (sides - t.sum * conc[c]) : 0.0f;
                 next[c][x] = std::min(std::max(conc[c] + dt * (dcdt[c] + diffusion), lo[c]), hi[c]);
             }
         };
 #pragma omp simd
         for (int x = x0; x < x1; ++x)
             texel(x);
+    }
+}
+
+// One Jacobi pass on rows [y0, y1), columns [x0, x1), of a weighted atlas
+// padded by halos: x' = clamp((rhs + dt r sides) / (1 + dt r S)). A chemical
+// that does not diffuse (r = 0) gets rhs. Texel-major over N chemicals, as
+// the explicit kernel: the weights are read once per texel.
+template <int N, bool Cross>
+MORPHOGEN_VECTOR_CLONES void relaxRowsWeighted(const StepConstants& k, const State& in,
+                                               const State& rhs, State& out, int y0, int y1, int x0,
+                                               int x1) {
+    const int w = in.width();
+    float a[N], lo[N], hi[N];
+    for (int c = 0; c < N; ++c) {
+        a[c] = k.dt * k.op.rates[std::size_t(c)];
+        lo[c] = k.clampMin[c];
+        hi[c] = k.clampMax[c];
+    }
+    for (int y = y0; y < y1; ++y) {
+        const std::size_t row = std::size_t(y) * std::size_t(w);
+        const WeightRow<Cross> weights(k, in.cellCount(), row);
+        RowTriple rows[N];
+        const float* b[N];
+        float* next[N];
+        for (int c = 0; c < N; ++c) {
+            rows[c] = rowTriple(in, c, y);
+            b[c] = rhs.plane(c) + row;
+            next[c] = out.plane(c) + row;
+        }
+#pragma omp simd
+        for (int x = x0; x < x1; ++x) {
+            const TexelWeights t = texelWeights(weights, x);
+#pragma GCC unroll 12
+            for (int c = 0; c < N; ++c) {
+                const float sides =
+                    weightedSides<Cross>(t, rows[c].mid, rows[c].down, rows[c].up, x);
+                next[c][x] = std::min(
+                    std::max((b[c][x] + a[c] * sides) / (1.0f + a[c] * t.sum), lo[c]), hi[c]);
+            }
+        }
+    }
+}
+
+template <bool Cross, std::size_t... I>
+RelaxTileKernel relaxForCount(int chemicals, std::index_sequence<I...>) {
+    constexpr RelaxTileKernel table[] = {&relaxRowsWeighted<int(I) + 1, Cross>...};
+    return table[chemicals - 1];
+}
+
+// rhs = c + dt react(c) on rows [y0, y1), columns [x0, x1), with the
+// session's parameters (a weighted atlas's padded tiles).
+template <class Cell>
+MORPHOGEN_VECTOR_CLONES void rhsBlock(const StepConstants& k, const State& in, State& out, int y0,
+                                      int y1, int x0, int x1) {
+    constexpr int n = Cell::kChemicals;
+    const int w = in.width();
+    const float dt = k.dt;
+    const Cell cell(k.params.data());
+    for (int y = y0; y < y1; ++y) {
+        const float* row[n];
+        float* rhs[n];
+        for (int c = 0; c < n; ++c) {
+            row[c] = in.plane(c) + std::size_t(y) * w;
+            rhs[c] = out.plane(c) + std::size_t(y) * w;
+        }
+        // A lambda, so that conc and dcdt are not omp simd's per-lane arrays.
+        const auto rhsCell = [&](int x) {
+            float conc[n], dcdt[n];
+            for (int c = 0; c < n; ++c)
+                conc[c] = row[c][x];
+            cell.react(conc, dcdt);
+            for (int c = 0; c < n; ++c)
+                rhs[c][x] = conc[c] + dt * dcdt[c];
+        };
+#pragma omp simd
+        for (int x = x0; x < x1; ++x)
+            rhsCell(x);
     }
 }
 
@@ -544,6 +663,15 @@ StepTileKernel fusedWeightedStep(const ReactionModel& model, const StepConstants
     });
 }
 
+StepTileKernel fusedRhsTilePass(const ReactionModel& model, const StepConstants& k) {
+    if (!k.weighted() || k.hasParamMaps())
+        return nullptr;
+    return withCell<StepTileKernel>(model, [&](auto tag) -> StepTileKernel {
+        using Cell = typename decltype(tag)::Type;
+        return &rhsBlock<Cell>;
+    });
+}
+
 StepRowsKernel fusedRhsPass(const ReactionModel& model, const StepConstants& k) {
     if (!fusedParamsOk(k) || k.domain.kind() == DomainKind::Atlas)
         return nullptr;
@@ -573,6 +701,19 @@ RelaxRowsKernel fusedRelaxation(const StepConstants& k) {
         break;
     }
     return nullptr;
+}
+
+RelaxTileKernel weightedRelaxation(const StepConstants& k) {
+    if (!k.weighted() || k.tensorWeighted() || k.drifting() ||
+        k.op.form != DiffusionOperator::Form::Laplacian5)
+        return nullptr;
+    for (int m : k.mappedRate)
+        if (m >= 0)
+            return nullptr;
+    assert(k.chemicals >= 1 && k.chemicals <= kMaxChemicals);
+    using Counts = std::make_index_sequence<kMaxChemicals>;
+    return k.crossWeighted() ? relaxForCount<true>(k.chemicals, Counts{})
+                             : relaxForCount<false>(k.chemicals, Counts{});
 }
 
 } // namespace morphogen

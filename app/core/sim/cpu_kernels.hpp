@@ -64,7 +64,19 @@ StepTileKernel fusedWeightedStep(const ReactionModel& model, const StepConstants
 // and per-cell parameters.
 StepRowsKernel fusedRhsPass(const ReactionModel& model, const StepConstants& k);
 
+// The same on rows [y0, y1), columns [x0, x1) of a weighted atlas padded by
+// halos (PaddedAtlasStep). Null for other models and per-cell parameters.
+StepTileKernel fusedRhsTilePass(const ReactionModel& model, const StepConstants& k);
+
 // Semi-implicit sweep; null for the tensor map and per-cell parameters.
 RelaxRowsKernel fusedRelaxation(const StepConstants& k);
+
+// One Jacobi pass of rows [y0, y1), columns [x0, x1) of a weighted atlas
+// padded by halos (PaddedAtlasStep): x' = clamp((rhs + dt r sides) / (1 + dt r
+// S)), S the texel's weight sum (StepConstants). Null unless the atlas is
+// weighted, isotropic, without drift and with constant rates.
+using RelaxTileKernel = void (*)(const StepConstants& k, const State& x, const State& rhs,
+                                 State& out, int y0, int y1, int x0, int x1);
+RelaxTileKernel weightedRelaxation(const StepConstants& k);
 
 } // namespace morphogen

@@ -136,24 +136,17 @@ void PaddedAtlasStep::fillHalos(int first, int end,
     }
 }
 
-void PaddedAtlasStep::step(StepTileKernel kernel, bool all,
-                           const std::vector<std::uint32_t>& frozen, bool threaded) {
-    const int chemicals = m_in.channels(), tiles = m_atlas.tileCount();
-    const int tpr = m_atlas.tilesPerRow(), last = m_width - 1;
-    std::array<float*, kMaxChemicals> planes{};
-    for (int c = 0; c < chemicals; ++c)
-        planes[std::size_t(c)] = m_in.plane(c);
-    // A halo is filled just before its tile steps: it reads m_in's tile
-    // texels, which no thread writes during the step, and only its own tile
-    // reads it, so no barrier; and the rows are in cache.
+template <class Block>
+void PaddedAtlasStep::forEachBlock(bool all, bool threaded, const Block& block) const {
+    const int tiles = m_atlas.tileCount(), tpr = m_atlas.tilesPerRow(), last = m_width - 1;
     if (all) {
 #pragma omp parallel for schedule(static) if (threaded)
         for (int r = 0; r < m_tileRows; ++r) {
             const FlushDenormals flush;
-            fillHalos(r * tpr, std::min((r + 1) * tpr, tiles), planes);
             // Whole rows (the halo columns between tiles too, unread): one
             // long vector loop per row rather than one per tile.
-            kernel(m_k, m_in, m_out, r * m_padded + 1, r * m_padded + 1 + m_n, 1, last);
+            block(r * tpr, std::min((r + 1) * tpr, tiles), r * m_padded + 1, r * m_padded + 1 + m_n,
+                  1, last);
         }
     } else {
         const int count = int(m_runs.size());
@@ -161,34 +154,35 @@ void PaddedAtlasStep::step(StepTileKernel kernel, bool all,
         for (int i = 0; i < count; ++i) {
             const FlushDenormals flush;
             const TileRun& run = m_runs[std::size_t(i)];
-            fillHalos(run.first, run.end, planes);
             const int x0 = (run.first % tpr) * m_padded + 1, y0 = (run.first / tpr) * m_padded + 1;
             const int x1 = ((run.end - 1) % tpr) * m_padded + 1 + m_n;
-            kernel(m_k, m_in, m_out, y0, y0 + m_n, x0, x1);
+            block(run.first, run.end, y0, y0 + m_n, x0, x1);
         }
     }
-    for (int c = 0; c < chemicals; ++c) {
-        const float* from = m_in.plane(c);
-        float* to = m_out.plane(c);
-        for (std::uint32_t cell : frozen)
-            to[cell] = from[cell];
-    }
+}
+
+std::array<float*, kMaxChemicals> PaddedAtlasStep::inPlanes() {
+    std::array<float*, kMaxChemicals> planes{};
+    for (int c = 0; c < m_in.channels(); ++c)
+        planes[std::size_t(c)] = m_in.plane(c);
+    return planes;
+}
+
+void PaddedAtlasStep::step(StepTileKernel kernel, bool all,
+                           const std::vector<std::uint32_t>& frozen, bool threaded) {
+    const std::array<float*, kMaxChemicals> planes = inPlanes();
+    // A halo is filled just before its tile steps: it reads m_in's tile
+    // texels, which no thread writes during the step, and only its own tile
+    // reads it, so no barrier; and the rows are in cache.
+    forEachBlock(all, threaded, [&](int first, int end, int y0, int y1, int x0, int x1) {
+        fillHalos(first, end, planes);
+        kernel(m_k, m_in, m_out, y0, y1, x0, x1);
+    });
+    keepFrozen(frozen);
     std::swap(m_in, m_out);
 }
 
-void PaddedAtlasStep::run(StepTileKernel kernel, const StepConstants& k, State& state, int steps,
-                          const std::vector<int>& active, const std::vector<std::uint32_t>& frozen,
-                          bool threaded) {
-    prepare(k);
-    std::vector<std::uint32_t> frozenPadded;
-    frozenPadded.reserve(frozen.size());
-    for (std::uint32_t cell : frozen)
-        if (m_atlas.used(cell)) // unused texels are never written
-            frozenPadded.push_back(paddedOf(cell));
-    load(state, m_in);
-    // The tiles that do not step must hold their values in both buffers.
-    if (!active.empty())
-        load(state, m_out);
+void PaddedAtlasStep::setRuns(const std::vector<int>& active) {
     // Active tiles side by side on a row of tiles step as one span (its
     // halo columns in between are written, and refilled before being read).
     std::vector<int> sorted = active;
@@ -200,6 +194,92 @@ void PaddedAtlasStep::run(StepTileKernel kernel, const StepConstants& k, State& 
             ++m_runs.back().end;
         else
             m_runs.push_back({t, t + 1});
+}
+
+void PaddedAtlasStep::keepFrozen(const std::vector<std::uint32_t>& frozen) {
+    for (int c = 0; c < m_in.channels(); ++c) {
+        const float* from = m_in.plane(c);
+        float* to = m_out.plane(c);
+        for (std::uint32_t cell : frozen)
+            to[cell] = from[cell];
+    }
+}
+
+std::vector<std::uint32_t>
+PaddedAtlasStep::paddedFrozen(const std::vector<std::uint32_t>& frozen) const {
+    std::vector<std::uint32_t> padded;
+    padded.reserve(frozen.size());
+    for (std::uint32_t cell : frozen)
+        if (m_atlas.used(cell)) // unused texels are never written
+            padded.push_back(paddedOf(cell));
+    return padded;
+}
+
+void PaddedAtlasStep::relaxPasses(RelaxTileKernel kernel, int passes, bool all,
+                                  const std::vector<std::uint32_t>& frozen, bool threaded) {
+    for (int pass = 0; pass < passes; ++pass) {
+        const std::array<float*, kMaxChemicals> planes = inPlanes();
+        // As step: a block of tiles fills its own halos, then reads only them.
+        forEachBlock(all, threaded, [&](int first, int end, int y0, int y1, int x0, int x1) {
+            fillHalos(first, end, planes);
+            kernel(m_k, m_in, m_rhs, m_out, y0, y1, x0, x1);
+        });
+        keepFrozen(frozen);
+        std::swap(m_in, m_out);
+    }
+}
+
+void PaddedAtlasStep::relax(RelaxTileKernel kernel, const StepConstants& k, State& state,
+                            const State& rhs, int passes, const std::vector<std::uint32_t>& frozen,
+                            bool threaded) {
+    prepare(k);
+    if (m_rhs.cellCount() == 0)
+        m_rhs = State(m_in.width(), m_in.height(), m_in.channels());
+    load(state, m_in);
+    load(rhs, m_rhs);
+    relaxPasses(kernel, passes, true, paddedFrozen(frozen), threaded);
+    for (int t = 0; t < m_atlas.tileCount(); ++t)
+        store(t, state);
+}
+
+void PaddedAtlasStep::runSemiImplicit(StepTileKernel rhsKernel, RelaxTileKernel kernel,
+                                      const StepConstants& k, State& state, int steps, int passes,
+                                      const std::vector<int>& active,
+                                      const std::vector<std::uint32_t>& frozen, bool threaded) {
+    prepare(k);
+    if (m_rhs.cellCount() == 0)
+        m_rhs = State(m_in.width(), m_in.height(), m_in.channels());
+    const std::vector<std::uint32_t> frozenPadded = paddedFrozen(frozen);
+    load(state, m_in);
+    const bool all = active.empty();
+    if (!all)
+        load(state, m_out); // the tiles that do not step hold their values in both
+    setRuns(active);
+    for (int i = 0; i < steps; ++i) {
+        // The reaction reads no neighbour (the halos' rhs is never read).
+        forEachBlock(all, threaded, [&](int, int, int y0, int y1, int x0, int x1) {
+            rhsKernel(m_k, m_in, m_rhs, y0, y1, x0, x1);
+        });
+        relaxPasses(kernel, passes, all, frozenPadded, threaded);
+    }
+    if (all)
+        for (int t = 0; t < m_atlas.tileCount(); ++t)
+            store(t, state);
+    else
+        for (int t : active)
+            store(t, state);
+}
+
+void PaddedAtlasStep::run(StepTileKernel kernel, const StepConstants& k, State& state, int steps,
+                          const std::vector<int>& active, const std::vector<std::uint32_t>& frozen,
+                          bool threaded) {
+    prepare(k);
+    const std::vector<std::uint32_t> frozenPadded = paddedFrozen(frozen);
+    load(state, m_in);
+    // The tiles that do not step must hold their values in both buffers.
+    if (!active.empty())
+        load(state, m_out);
+    setRuns(active);
     for (int i = 0; i < steps; ++i)
         step(kernel, active.empty(), frozenPadded, threaded);
     if (active.empty())

@@ -47,8 +47,31 @@ public:
              const std::vector<int>& active, const std::vector<std::uint32_t>& frozen,
              bool threaded);
 
+    // Runs `passes` Jacobi passes of a semi-implicit step (weightedRelaxation's
+    // `kernel` for `k`) on (I - dt A) x = rhs, from x = `state`, which gets
+    // the result; `rhs` is in the atlas layout. The `frozen` cells keep their
+    // values.
+    void relax(RelaxTileKernel kernel, const StepConstants& k, State& state, const State& rhs,
+               int passes, const std::vector<std::uint32_t>& frozen, bool threaded);
+    // `steps` whole semi-implicit steps in the padded layout: the right-hand
+    // side by `rhsKernel` (fusedRhsTilePass's), then relax's passes. The
+    // state is copied in and out once, not once per step. With `active`
+    // tiles (as run) only they step, a local solve whose neighbours hold.
+    void runSemiImplicit(StepTileKernel rhsKernel, RelaxTileKernel kernel, const StepConstants& k,
+                         State& state, int steps, int passes, const std::vector<int>& active,
+                         const std::vector<std::uint32_t>& frozen, bool threaded);
+
 private:
     std::uint32_t paddedCell(int tile, int u, int v) const;
+    std::vector<std::uint32_t> paddedFrozen(const std::vector<std::uint32_t>& frozen) const;
+    void keepFrozen(const std::vector<std::uint32_t>& frozen);
+    void relaxPasses(RelaxTileKernel kernel, int passes, bool all,
+                     const std::vector<std::uint32_t>& frozen, bool threaded);
+    // Calls block(firstTile, endTile, y0, y1, x0, x1) for every row of tiles
+    // (all) or every run of active tiles (m_runs), in parallel.
+    template <class Block> void forEachBlock(bool all, bool threaded, const Block& block) const;
+    void setRuns(const std::vector<int>& active);
+    std::array<float*, kMaxChemicals> inPlanes();
     std::uint32_t paddedOf(std::uint32_t cell) const; // a used atlas cell's
     std::vector<float> padPlanes(const std::vector<float>& planes) const;
     void prepare(const StepConstants& k);
@@ -78,6 +101,7 @@ private:
         int first = 0, end = 0;
     };
     std::vector<TileRun> m_runs;
+    State m_rhs;                  // relax's right-hand side, padded (made on its first call)
     std::vector<int> m_diffusing; // chemicals with a rate other than 0
     State m_in, m_out;
 };

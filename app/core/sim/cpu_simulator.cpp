@@ -247,12 +247,21 @@ std::optional<std::string> CpuSimulator::insaneValue(const ReactionModel& model)
 void CpuSimulator::run(int steps) {
     if (runTilesApart(steps))
         return;
-    if (m_padded) {
+    if (m_padded && m_weightedStep != nullptr) {
         m_nextMatches = false;
         const std::size_t n = std::size_t(m_k.domain.atlasMap()->tileSize());
         const bool many =
             m_activeTiles.empty() ? threaded(m_current) : m_activeTiles.size() * n * n >= 65536;
         m_padded->run(m_weightedStep, m_k, m_current, steps, m_activeTiles, m_frozenCells, many);
+        return;
+    }
+    if (m_padded && m_weightedRelax != nullptr && m_rhsTile != nullptr) {
+        m_nextMatches = false;
+        const std::size_t n = std::size_t(m_k.domain.atlasMap()->tileSize());
+        const bool many =
+            m_activeTiles.empty() ? threaded(m_current) : m_activeTiles.size() * n * n >= 65536;
+        m_padded->runSemiImplicit(m_rhsTile, m_weightedRelax, m_k, m_current, steps,
+                                  m_k.relaxationPasses, m_activeTiles, m_frozenCells, many);
         return;
     }
     // Made on the first step, not with the simulator: while a run is being
@@ -628,8 +637,10 @@ void CpuSimulator::stepActiveTiles() {
 }
 
 void CpuSimulator::step() {
-    if (!m_activeTiles.empty()) {
-        // fromSession refuses the semi-implicit integrator on atlases.
+    // Without run()'s padded semi-implicit path (per-cell reaction
+    // parameters) a semi-implicit step solves over the whole atlas: the
+    // active tiles' explicit step would be unstable at its dt.
+    if (!m_activeTiles.empty() && m_k.integrator != Integrator::SemiImplicit) {
         stepActiveTiles();
         return;
     }
@@ -762,6 +773,11 @@ void CpuSimulator::stepSemiImplicit() {
         forEachBand(m_current, [&](int y0, int y1) { m_rhsPass(m_k, m_current, m_rhs, y0, y1); });
     else
         rhsGeneric();
+    if (m_weightedRelax != nullptr) {
+        m_padded->relax(m_weightedRelax, m_k, m_current, m_rhs, m_k.relaxationPasses, m_frozenCells,
+                        threaded(m_current));
+        return;
+    }
     // fromSession refuses the tensor map here, so every operator has a sweep.
     assert(m_relax != nullptr);
     // Relaxation passes from x0 = c: each reads m_current, writes m_next.
@@ -824,8 +840,11 @@ void CpuSimulator::pickKernels() {
     m_explicitStep = fusedExplicitStep(m_model, m_k);
     m_rhsPass = fusedRhsPass(m_model, m_k);
     m_relax = fusedRelaxation(m_k);
-    m_weightedStep = fusedWeightedStep(m_model, m_k);
-    if (m_weightedStep != nullptr) {
+    const bool semiImplicit = m_k.integrator == Integrator::SemiImplicit;
+    m_weightedStep = semiImplicit ? nullptr : fusedWeightedStep(m_model, m_k);
+    m_weightedRelax = semiImplicit ? weightedRelaxation(m_k) : nullptr;
+    m_rhsTile = m_weightedRelax != nullptr ? fusedRhsTilePass(m_model, m_k) : nullptr;
+    if (m_weightedStep != nullptr || m_weightedRelax != nullptr) {
         if (!m_padded)
             m_padded = std::make_unique<PaddedAtlasStep>(*m_k.domain.atlasMap(), m_diagonals, m_k);
     } else {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <limits>
 
 #include "core/base/errors.hpp"
@@ -132,16 +133,47 @@ void checkOperatorOnDomain(const StepConstants& k) {
                              " diffusion operator cannot run on an atlas domain (accepted there: "
                              "isotropic diffusion, 5-point or 9-point stencil; anisotropic "
                              "tensors on a mesh, whose surface gives them a direction field)");
-        if (k.integrator == Integrator::SemiImplicit)
-            throw InputError("the semi_implicit integrator cannot run on an atlas domain (its "
-                             "relaxation weight comes from a grid's Fourier symbol); use "
+        if (k.integrator == Integrator::SemiImplicit && !k.weighted())
+            throw InputError("the semi_implicit integrator runs on a weighted atlas (a model's "
+                             "surface) only, not on an unweighted atlas domain; use "
                              "explicit_euler");
+        if (k.integrator == Integrator::SemiImplicit && (k.tensorWeighted() || k.drifting()))
+            throw InputError(std::string("the semi_implicit integrator on a model needs "
+                                         "isotropic diffusion without drops: ") +
+                             (k.drifting() ? "\"gravity\" (drops running down) is set"
+                                           : "the diffusion is anisotropic") +
+                             "; use explicit_euler");
     }
     // Its map texture would need tile-local fetches too; sweeps of tensor
     // fields are left to one-by-one runs.
     if (k.tiled() && k.op.form == Form::TensorMap)
         throw InputError("a diffusion tensor map cannot run on a tiled grid domain (a batched "
                          "sweep); run the tiles one by one");
+}
+
+// On a weighted atlas there are no Fourier modes: each texel's sweep is
+// Jacobi's, x' = (rhs + dt r sides) / (1 + dt r S) with S its weight sum (the
+// backends compute it per texel; omega stays 0). Jacobi's sweep is a convex
+// combination of rhs and the neighbours' values, so it is stable at any dt;
+// its residual factor at a texel is at most sigma / (1 + sigma), sigma = dt r
+// S: the worst texel's is `contraction`.
+void loadAtlasRelaxation(StepConstants& k) {
+    const std::vector<float>& planes = *k.weightPlanes;
+    const std::size_t cells = planes.size() / 4;
+    double largest = 0;
+    for (std::size_t i = 0; i < cells; ++i) {
+        double sum =
+            double(planes[i]) + planes[cells + i] + planes[2 * cells + i] + planes[3 * cells + i];
+        if (k.diagonalPlanes) {
+            const std::vector<float>& d = *k.diagonalPlanes;
+            sum += double(d[i]) + d[cells + i] + d[2 * cells + i] + d[3 * cells + i];
+        }
+        largest = std::max(largest, sum);
+    }
+    for (int c = 0; c < k.chemicals; ++c) {
+        const double sigma = double(k.dt) * std::abs(double(k.op.rates[std::size_t(c)])) * largest;
+        k.contraction = std::max(k.contraction, sigma / (1.0 + sigma));
+    }
 }
 
 // The semi-implicit solve's per-chemical Richardson weights.
@@ -153,6 +185,10 @@ void loadRelaxationWeights(StepConstants& k) {
     if (k.op.form == DiffusionOperator::Form::TensorMap)
         throw InputError("the semi_implicit integrator does not support diffusion maps "
                          "(its Jacobi sweep needs a constant kernel); use explicit_euler");
+    if (k.weighted()) {
+        loadAtlasRelaxation(k);
+        return;
+    }
     // The Fourier analysis of a tiled grid is that of one periodic tile.
     const int w = k.domain.tileWidth(), h = k.domain.tileHeight();
     for (int c = 0; c < k.chemicals; ++c) {

@@ -12,6 +12,7 @@
 #include "core/base/limits.hpp"
 #include "core/mesh/mesh_report.hpp"
 #include "core/mesh/mesh_samples.hpp"
+#include "core/session/cascade.hpp"
 #include "core/sim/stroke_brush.hpp"
 #include "core/surface/mesh_projector.hpp"
 #include "core/surface/surface_weights.hpp"
@@ -83,7 +84,38 @@ std::string SurfaceSetup::describe() const {
        << atlas.width() << "x" << atlas.height() << " atlas; " << unitsPerWorld
        << " model units per mesh unit, texels " << texelUnits << " units on average; built in "
        << seconds << " s";
+    if (switchedToSemiImplicit)
+        os << "; semi-implicit steps, since explicit ones would run " << explicitSubsteps
+           << " substeps each (set \"integrator\" or --integrator to choose)";
     return os.str();
+}
+
+int chooseSurfaceIntegrator(Session& session, const AtlasWeights& weights, bool* switched) {
+    if (switched)
+        *switched = false;
+    const double ratio = double(maxCoefficientSum(weights)) / 4.0;
+    const int substeps = ratio > 1.0 ? int(std::ceil(ratio - 1e-9)) : 1;
+    if (session.integratorGiven || session.integrator != Integrator::ExplicitEuler ||
+        weights.tensor || weights.drift || substeps <= session.relaxationPasses + 1)
+        return substeps;
+    // A mapped diffusion rate in any model the run uses (the semi-implicit
+    // step needs constant rates).
+    const auto mapsARate = [&](const ReactionModel& model) {
+        for (const auto& chemical : model.chemicals())
+            if (!chemical.diffusionParam.empty() &&
+                session.paramMaps.count(chemical.diffusionParam))
+                return true;
+        return false;
+    };
+    if (mapsARate(session.reactionModel()))
+        return substeps;
+    for (std::size_t i = 0; i < session.stages.size(); ++i)
+        if (mapsARate(stageModel(session.stages, i, session.reactionModel())))
+            return substeps;
+    session.integrator = Integrator::SemiImplicit;
+    if (switched)
+        *switched = true;
+    return substeps;
 }
 
 namespace {
@@ -196,6 +228,8 @@ SurfaceSetup setUpSurface(Session& session,
         }
     setup.texelUnits = used ? std::sqrt(texelArea / double(used)) * setup.unitsPerWorld : 0;
     useAtlas(session, setup.tiles.atlas, setup.weights);
+    setup.explicitSubsteps =
+        chooseSurfaceIntegrator(session, *setup.weights, &setup.switchedToSemiImplicit);
     session.atlasPositions = texelPositionsOf(setup.tiles);
     placeModelStrokes(session, setup.mesh.mesh);
     requireStrokesOnSurface(session, *setup.tiles.atlas, setup.mesh.mesh, spec.mesh);
