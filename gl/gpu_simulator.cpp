@@ -472,24 +472,36 @@ void GpuSimulator::setActiveTiles(const std::vector<int>& tiles) {
 
 void GpuSimulator::run(int steps) {
     bindAuxiliaryTextures();
-    // A semi-implicit step solves over the whole atlas: the active tiles'
-    // explicit step would be unstable at its dt.
-    if (!m_activeRects.empty() && m_k.integrator == Integrator::ExplicitEuler) {
-        m_pingPong.runRects(m_program, steps, m_activeRects);
-        return;
-    }
+    const bool local = !m_activeRects.empty();
     if (m_k.integrator == Integrator::ExplicitEuler) {
-        m_pingPong.run(m_program, steps);
+        if (local)
+            m_pingPong.runRects(m_program, steps, m_activeRects);
+        else
+            m_pingPong.run(m_program, steps);
         return;
     }
     for (int i = 0; i < steps; ++i) {
-        // rhs = c + dt f(c), then relaxation passes from x0 = c.
+        // rhs = c + dt f(c), then relaxation passes from x0 = c; localized,
+        // both inside the active tiles' rectangles only (the passes read the
+        // rhs nowhere else).
         m_rhsProgram.use();
         m_pingPong.vertexArray().bind();
         m_rhsFramebuffer.bind();
         m_pingPong.bindCurrent();
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        m_pingPong.run(m_program, m_k.relaxationPasses);
+        if (local) {
+            glEnable(GL_SCISSOR_TEST);
+            for (const CellRect& r : m_activeRects) {
+                glViewport(r.x, r.y, r.width, r.height);
+                glScissor(r.x, r.y, r.width, r.height);
+                glDrawArrays(GL_TRIANGLES, 0, 3);
+            }
+            glDisable(GL_SCISSOR_TEST);
+            glViewport(0, 0, m_session.width, m_session.height);
+            m_pingPong.runRects(m_program, m_k.relaxationPasses, m_activeRects);
+        } else {
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            m_pingPong.run(m_program, m_k.relaxationPasses);
+        }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -149,10 +149,10 @@ public:
     // its value exactly and still serves as a neighbour. Empty: every tile
     // (the default). Throws InputError for a tile out of range or a domain
     // that is not an atlas (with a non-empty set), and leaves the set as it was.
-    // A semi-implicit step solves on the active tiles alone where the CPU runs
-    // it in its padded layout (a model without per-cell reaction parameters);
-    // elsewhere (the GPU, per-cell parameters) it keeps stepping every tile:
-    // an explicit step of a few tiles would be unstable at its dt.
+    // A semi-implicit step solves on the active tiles alone (their neighbours
+    // held), except on the CPU with per-cell reaction parameters, where it
+    // keeps stepping every tile: an explicit step of a few tiles would be
+    // unstable at its dt.
     virtual void setActiveTiles(const std::vector<int>& tiles) = 0;
 
     // Live changes, in force from the next step, without a rebuild or a
