@@ -454,6 +454,26 @@ RelaxTileKernel relaxForCount(int chemicals, std::index_sequence<I...>) {
     return table[chemicals - 1];
 }
 
+// rhs = c + dt react(c) on columns [x0, x1) of one row (`row`, `rhs`: each
+// chemical's row of the state and of the right-hand side).
+template <class Cell, int N>
+MORPHOGEN_INLINE void rhsSpan(const Cell& cell, float dt, const float* const (&row)[N],
+                              float* const (&rhs)[N], int x0, int x1) {
+    // A lambda, so that conc and dcdt are not omp simd's per-lane arrays,
+    // which GCC fails to vectorise.
+    const auto rhsCell = [&](int x) {
+        float conc[N], dcdt[N];
+        for (int c = 0; c < N; ++c)
+            conc[c] = row[c][x];
+        cell.react(conc, dcdt);
+        for (int c = 0; c < N; ++c)
+            rhs[c][x] = conc[c] + dt * dcdt[c];
+    };
+#pragma omp simd
+    for (int x = x0; x < x1; ++x)
+        rhsCell(x);
+}
+
 // rhs = c + dt react(c) on rows [y0, y1), columns [x0, x1), with the
 // session's parameters (a weighted atlas's padded tiles).
 template <class Cell>
@@ -461,7 +481,6 @@ MORPHOGEN_VECTOR_CLONES void rhsBlock(const StepConstants& k, const State& in, S
                                       int y1, int x0, int x1) {
     constexpr int n = Cell::kChemicals;
     const int w = in.width();
-    const float dt = k.dt;
     const Cell cell(k.params.data());
     for (int y = y0; y < y1; ++y) {
         const float* row[n];
@@ -470,18 +489,7 @@ MORPHOGEN_VECTOR_CLONES void rhsBlock(const StepConstants& k, const State& in, S
             row[c] = in.plane(c) + std::size_t(y) * w;
             rhs[c] = out.plane(c) + std::size_t(y) * w;
         }
-        // A lambda, so that conc and dcdt are not omp simd's per-lane arrays.
-        const auto rhsCell = [&](int x) {
-            float conc[n], dcdt[n];
-            for (int c = 0; c < n; ++c)
-                conc[c] = row[c][x];
-            cell.react(conc, dcdt);
-            for (int c = 0; c < n; ++c)
-                rhs[c][x] = conc[c] + dt * dcdt[c];
-        };
-#pragma omp simd
-        for (int x = x0; x < x1; ++x)
-            rhsCell(x);
+        rhsSpan<Cell, n>(cell, k.dt, row, rhs, x0, x1);
     }
 }
 
@@ -491,7 +499,6 @@ MORPHOGEN_VECTOR_CLONES void rhsRows(const StepConstants& k, const State& in, St
                                      int y1) {
     constexpr int n = Cell::kChemicals;
     const int w = in.width();
-    const float dt = k.dt;
     for (int y = y0; y < y1; ++y) {
         const float* row[n];
         float* rhs[n];
@@ -500,20 +507,7 @@ MORPHOGEN_VECTOR_CLONES void rhsRows(const StepConstants& k, const State& in, St
             rhs[c] = out.plane(c) + std::size_t(y) * w;
         }
         const auto segment = [&](int base, int width, const float* params) MORPHOGEN_INLINE_LAMBDA {
-            const Cell cell(params);
-            // A lambda, so that conc and dcdt are not omp simd's per-lane arrays,
-            // which GCC fails to vectorise.
-            const auto rhsCell = [&](int x) {
-                float conc[n], dcdt[n];
-                for (int c = 0; c < n; ++c)
-                    conc[c] = row[c][x];
-                cell.react(conc, dcdt);
-                for (int c = 0; c < n; ++c)
-                    rhs[c][x] = conc[c] + dt * dcdt[c];
-            };
-#pragma omp simd
-            for (int x = base; x < base + width; ++x)
-                rhsCell(x);
+            rhsSpan<Cell, n>(Cell(params), k.dt, row, rhs, base, base + width);
         };
         forEachSegment<Tiled>(k, y, w, segment);
     }
