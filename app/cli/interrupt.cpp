@@ -27,7 +27,11 @@ long long monotonicMs() {
 // Only async-signal-safe calls here: write(2), not stdio; unlink and rmdir
 // (removeTemporariesForSignal); sigaction and raise.
 extern "C" void onSignal(int sig) {
-    if (sig == SIGINT && g_guarded.load()) {
+    // Once a Ctrl-C was taken, its repeat is ignored even after the guard
+    // ended: the command is writing what it finished or exiting with 1, and
+    // a second delivery of the same Ctrl-C (timeout -s INT, a pipeline)
+    // there ended it with 130.
+    if (sig == SIGINT && (g_guarded.load() || g_interrupted.load())) {
         const long long now = monotonicMs();
         if (!g_interrupted.load()) {
             g_firstInterruptMs.store(now);

@@ -21,7 +21,8 @@ constexpr int kRepeatInterruptMs = 1000;
 // Ctrl-C for the guard's lifetime: the first SIGINT sets cancelled() (and
 // writes `notice` to stderr, when given), so a long command can stop at a safe
 // point and still write what it finished; a SIGINT within kRepeatInterruptMs
-// of it is the same Ctrl-C and ignored; a later one removes the temporaries
+// of it is the same Ctrl-C and ignored (also after the guard ended, while the
+// command exits); a later one removes the temporaries
 // and ends the process the usual way. One guard at a time; `notice` must
 // outlive it (a string literal).
 class InterruptGuard {
