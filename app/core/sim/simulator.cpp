@@ -158,18 +158,7 @@ void checkOperatorOnDomain(const StepConstants& k) {
 // its residual factor at a texel is at most sigma / (1 + sigma), sigma = dt r
 // S: the worst texel's is `contraction`.
 void loadAtlasRelaxation(StepConstants& k) {
-    const std::vector<float>& planes = *k.weightPlanes;
-    const std::size_t cells = planes.size() / 4;
-    double largest = 0;
-    for (std::size_t i = 0; i < cells; ++i) {
-        double sum =
-            double(planes[i]) + planes[cells + i] + planes[2 * cells + i] + planes[3 * cells + i];
-        if (k.diagonalPlanes) {
-            const std::vector<float>& d = *k.diagonalPlanes;
-            sum += double(d[i]) + d[cells + i] + d[2 * cells + i] + d[3 * cells + i];
-        }
-        largest = std::max(largest, sum);
-    }
+    const double largest = maxCoefficientSum(*k.domain.atlasWeights());
     for (int c = 0; c < k.chemicals; ++c) {
         const double sigma = double(k.dt) * std::abs(double(k.op.rates[std::size_t(c)])) * largest;
         k.contraction = std::max(k.contraction, sigma / (1.0 + sigma));

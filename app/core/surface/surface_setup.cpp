@@ -93,8 +93,7 @@ std::string SurfaceSetup::describe() const {
 int chooseSurfaceIntegrator(Session& session, const AtlasWeights& weights, bool* switched) {
     if (switched)
         *switched = false;
-    const double ratio = double(maxCoefficientSum(weights)) / 4.0;
-    const int substeps = ratio > 1.0 ? int(std::ceil(ratio - 1e-9)) : 1;
+    const int substeps = weightedSubsteps(weights);
     if (session.integratorGiven || session.integrator != Integrator::ExplicitEuler ||
         weights.tensor || weights.drift || substeps <= session.relaxationPasses + 1)
         return substeps;
