@@ -227,3 +227,50 @@ TEST(DisplayAtlas, PadsRgbaBytes) {
     for (std::size_t p = 0; p < d.texelCount(); ++p)
         EXPECT_EQ(int(paddedBytes[p][0]), int(std::lround(std::clamp(paddedRed[p], 0.0f, 255.0f))));
 }
+
+// At scale s every display texel, gutter included, is the bilinear
+// interpolation of the atlas at its centre; on a periodic plane that is the
+// plane's field, computed here from the plane's own coordinates. A field
+// linear in x and y (periodic jumps kept away from the tiles checked)
+// comes out exactly.
+TEST(DisplayAtlas, ScaledTexelsInterpolateTheAtlas) {
+    const int n = 4, tiles = 5;
+    const Atlas plane = Atlas::periodicPlane(n, tiles, tiles);
+    const int side = tiles * n;
+    std::vector<float> field(plane.cellCount());
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x)
+            field[plane.cellAt(x, y)] = 3.0f * float(x) + 0.5f * float(y) * float(y);
+    for (const int s : {2, 3, 4})
+        for (const int g : {1, 2, 5}) {
+            SCOPED_TRACE("scale " + std::to_string(s) + ", gutter " + std::to_string(g));
+            const DisplayAtlas d(plane, g, s);
+            EXPECT_EQ(d.paddedTileSize(), n * s + 2 * g);
+            EXPECT_EQ(d.width(), plane.tilesPerRow() * (n * s + 2 * g));
+            const std::vector<float> padded = d.pad(field, 1);
+            const auto value = [&](int x, int y) { return 3.0 * x + 0.5 * double(y) * double(y); };
+            // The middle tile: its gutter's footprint stays off the periodic wrap.
+            const int t = (tiles / 2) * tiles + tiles / 2, ox = (tiles / 2) * n, oy = ox;
+            double worst = 0;
+            for (int v = -g; v < n * s + g; ++v)
+                for (int u = -g; u < n * s + g; ++u) {
+                    const double x = (u + 0.5) / s - 0.5, y = (v + 0.5) / s - 0.5;
+                    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+                    const double fx = x - x0, fy = y - y0;
+                    const double want = (1 - fx) * (1 - fy) * value(ox + x0, oy + y0) +
+                                        fx * (1 - fy) * value(ox + x0 + 1, oy + y0) +
+                                        (1 - fx) * fy * value(ox + x0, oy + y0 + 1) +
+                                        fx * fy * value(ox + x0 + 1, oy + y0 + 1);
+                    worst = std::max(worst, std::abs(double(at(d, padded, t, u, v)) - want));
+                }
+            EXPECT_LT(worst, 1e-3); // float sums of values up to ~50
+            // Atlas corners land on display texel corners: the UVs of the
+            // tiled mesh sample the same place at any scale.
+            const std::array<int, 2> xy = d.texel(t, 0, 0);
+            EXPECT_FLOAT_EQ(d.cornerUv(t, 1, 2).x(), float(xy[0] + s) / d.width());
+            EXPECT_FLOAT_EQ(d.cornerUv(t, 1, 2).y(), float(xy[1] + 2 * s) / d.height());
+            EXPECT_EQ(d.atlasTexel(-1, n * s), (std::array<int, 2>{0, n - 1}));
+            EXPECT_EQ(d.atlasTexel(s, 2 * s - 1), (std::array<int, 2>{1, 1}));
+        }
+    EXPECT_THROW(DisplayAtlas(plane, 2, 0), std::invalid_argument);
+}

@@ -148,9 +148,10 @@ TEST(ModelTextureSet, InTheModelsUvsEachTexelHoldsTheHeightAtItsPoint) {
 // The share of texels where the normal leans against the height's slope as
 // `format` says: OpenGL's green runs up the image (where the height rises
 // towards the top row, green is below 0.5), DirectX's down; red against the
-// slope to the right. Only texels whose four neighbours are `inside`.
+// slope to the right. Only texels whose four neighbours are `inside` and
+// whose height differs by `clear` or more across them both ways.
 double agreement(const Image& height, const Image& normal, NormalFormat format,
-                 const std::vector<char>& inside, int& sloped) {
+                 const std::vector<char>& inside, float clear, int& sloped) {
     int agree = 0;
     sloped = 0;
     const int w = height.width;
@@ -161,7 +162,7 @@ double agreement(const Image& height, const Image& normal, NormalFormat format,
                 continue;
             const float up = height.at(x, y - 1) - height.at(x, y + 1);
             const float right = height.at(x + 1, y) - height.at(x - 1, y);
-            if (std::abs(up) < 0.01f || std::abs(right) < 0.01f)
+            if (std::abs(up) < clear || std::abs(right) < clear)
                 continue; // where the slope is clear
             const float green = normal.at(x, y, 1) - 0.5f, red = normal.at(x, y, 0) - 0.5f;
             const float wantGreen = format == NormalFormat::OpenGl ? -up : up;
@@ -173,13 +174,13 @@ double agreement(const Image& height, const Image& normal, NormalFormat format,
 
 TEST(ModelTextureSet, TheNormalMapIsTheHeightsSlopeInTheStatedConvention) {
     Fixture f = makeFixture();
-    const DisplayAtlas display(*f.tiles.atlas, SurfaceLook{}.gutter);
+    const Atlas& atlas = *f.tiles.atlas;
+    const DisplayAtlas display(atlas, SurfaceLook{}.gutter, displayScale(atlas, SurfaceLook{}));
     // The atlas layout: the texels of each tile (not its gutter).
     std::vector<char> inTiles(display.texelCount(), 0);
-    const Atlas& atlas = *f.tiles.atlas;
     for (int tile = 0; tile < atlas.tileCount(); ++tile)
-        for (int v = 0; v < atlas.tileSize(); ++v)
-            for (int u = 0; u < atlas.tileSize(); ++u) {
+        for (int v = 0; v < display.displayTileSize(); ++v)
+            for (int u = 0; u < display.displayTileSize(); ++u) {
                 const std::array<int, 2> p = display.texel(tile, u, v);
                 inTiles[std::size_t(p[1]) * std::size_t(display.width()) + std::size_t(p[0])] = 1;
             }
@@ -201,7 +202,10 @@ TEST(ModelTextureSet, TheNormalMapIsTheHeightsSlopeInTheStatedConvention) {
                     inside[i] = albedo.px[i * 4 + 3] > 0 ? 1 : 0;
             }
             int sloped = 0;
-            const double share = agreement(height, normal, format, inside, sloped);
+            // The atlas's texture texels are a scale's fraction of a tile
+            // texel: their steps in height are as much smaller.
+            const float clear = modelUvs ? 0.01f : 0.01f / float(display.scale());
+            const double share = agreement(height, normal, format, inside, clear, sloped);
             EXPECT_GT(sloped, 300);
             // In the model's UVs a few texels by the islands' seams see
             // neighbours across them. In the atlas the slope is taken on the
@@ -216,7 +220,9 @@ TEST(ModelTextureSet, TheNormalMapIsTheHeightsSlopeInTheStatedConvention) {
 TEST(ModelTextureSet, WithoutUvsTheSetIsInTheTilesAtlasWithTheTiledSurface) {
     const Fixture f = makeFixture();
     const std::filesystem::path dir = writeSet(f, "atlas", nullptr, 64);
-    const DisplayAtlas display(*f.tiles.atlas, SurfaceLook{}.gutter);
+    const Atlas& atlas = *f.tiles.atlas;
+    const DisplayAtlas display(atlas, SurfaceLook{}.gutter, displayScale(atlas, SurfaceLook{}));
+    ASSERT_GT(display.scale(), 1); // 4 x 4 tiles: the texture is finer than the atlas
     const Image albedo = readImage(dir / "albedo.png");
     const Image height = readImage(dir / "height.exr");
     EXPECT_EQ(albedo.width, display.width());
@@ -225,24 +231,36 @@ TEST(ModelTextureSet, WithoutUvsTheSetIsInTheTilesAtlasWithTheTiledSurface) {
     EXPECT_EQ(nlohmann::json::parse(in)["layout"], "tiles atlas");
     const TexturedMesh model = readTexturedGlb((dir / "model.glb").string());
     ASSERT_EQ(model.baseColour.width, display.width());
-    // Every texel of a tile: the height of its atlas cell (the padded layout
-    // of texel (u, v) of each tile), opaque albedo equal to the GLB's.
-    const Atlas& atlas = *f.tiles.atlas;
-    const int n = atlas.tileSize();
+    // Every texel of a tile: opaque albedo equal to the GLB's; where the
+    // texel's bilinear footprint lies inside its tile, the height is the
+    // bilinear interpolation of its four atlas cells' heights at its centre.
+    const int n = atlas.tileSize(), s = display.scale();
     double worst = 0;
+    int interpolated = 0;
     for (int tile = 0; tile < atlas.tileCount(); ++tile)
-        for (int v = 0; v < n; ++v)
-            for (int u = 0; u < n; ++u) {
+        for (int v = 0; v < n * s; ++v)
+            for (int u = 0; u < n * s; ++u) {
                 const std::array<int, 2> p = display.texel(tile, u, v);
-                const std::uint32_t cell = atlas.tileCell(tile, u, v);
-                worst = std::max(worst, std::abs(height.at(p[0], p[1]) -
-                                                 fieldHeight(f.tiles.texelPositions[cell])));
+                const double x = (u + 0.5) / s - 0.5, y = (v + 0.5) / s - 0.5;
+                const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+                if (x0 >= 0 && y0 >= 0 && x0 + 1 < n && y0 + 1 < n) {
+                    const auto h = [&](int i, int j) {
+                        return fieldHeight(f.tiles.texelPositions[atlas.tileCell(tile, i, j)]);
+                    };
+                    const double fx = x - x0, fy = y - y0;
+                    const double want = (1 - fx) * (1 - fy) * h(x0, y0) +
+                                        fx * (1 - fy) * h(x0 + 1, y0) +
+                                        (1 - fx) * fy * h(x0, y0 + 1) + fx * fy * h(x0 + 1, y0 + 1);
+                    worst = std::max(worst, std::abs(height.at(p[0], p[1]) - want));
+                    ++interpolated;
+                }
                 ASSERT_EQ(albedo.at(p[0], p[1], 3), 1.0f);
                 const auto& glb =
                     model.baseColour.texels[std::size_t(p[1]) * std::size_t(display.width()) +
                                             std::size_t(p[0])];
                 ASSERT_NEAR(albedo.at(p[0], p[1], 0) * 255.0f, glb[0], 0.5f);
             }
+    EXPECT_GT(interpolated, atlas.tileCount() * (n - 1) * (n - 1) * s * s / 2);
     // The EXR holds floats of (value - low) / (high - low): rounding only.
     EXPECT_LE(worst, 1e-5);
 }

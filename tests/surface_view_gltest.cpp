@@ -189,11 +189,12 @@ TEST(SurfaceView, ConstantColourShowsNoTileEdges) {
 
     // The check can fail: without the gutter (its texels black) every tile edge shows.
     TexturedMesh broken = meshA;
-    const DisplayAtlas display(*a.atlas, 2);
+    const DisplayAtlas display(*a.atlas, 2, displayScale(*a.atlas, SurfaceLook{}));
+    const int side = display.displayTileSize();
     for (int t = 0; t < 6; ++t)
-        for (int v = -2; v < n + 2; ++v)
-            for (int u = -2; u < n + 2; ++u)
-                if (u < 0 || v < 0 || u >= n || v >= n) {
+        for (int v = -2; v < side + 2; ++v)
+            for (int u = -2; u < side + 2; ++u)
+                if (u < 0 || v < 0 || u >= side || v >= side) {
                     const std::array<int, 2> xy = display.texel(t, u, v);
                     broken.baseColour.texels[std::size_t(xy[1]) * display.width() + xy[0]] = {
                         0, 0, 0, 255};
@@ -315,7 +316,7 @@ TEST(SurfaceGlb, ReloadsWithTheSameMeshTexturesAndLook) {
     const TexturedMesh again = readTexturedGlb(path);
     ASSERT_EQ(again.positions.size(), vertices);
     EXPECT_EQ(again.triangles, direct.triangles);
-    const DisplayAtlas display(*tiles.atlas, gutter);
+    const DisplayAtlas display(*tiles.atlas, gutter, displayScale(*tiles.atlas, SurfaceLook{}));
     EXPECT_EQ(again.baseColour.width, display.width());
     EXPECT_EQ(again.baseColour.height, display.height());
     EXPECT_EQ(again.normalMap.width, display.width());

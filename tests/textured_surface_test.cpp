@@ -41,7 +41,8 @@ TEST(TexturedSurface, MeshFramesAndUvs) {
         EXPECT_EQ(t[0] / perTile, t[1] / perTile);
         EXPECT_EQ(t[0] / perTile, t[2] / perTile);
     }
-    const DisplayAtlas display(*tiles.atlas, 2);
+    const DisplayAtlas display(*tiles.atlas, 2, displayScale(*tiles.atlas, SurfaceLook{}));
+    EXPECT_EQ(display.scale(), 3); // 6 x 6 tiles, drawn at least 16 texels wide
     for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
         const int tile = int(k / perTile), i = int(k % perTile) % (n + 1),
                   j = int(k % perTile) / (n + 1);
@@ -77,6 +78,7 @@ TEST(TexturedSurface, ReliefIsTheSurfaceGradientOnBothSidesOfEveryEdge) {
         test::fieldOnTexels(tiles, [](const Eigen::Vector3f& p) { return p.x(); });
     SurfaceLook look;
     look.bump = 3.0f;
+    look.scale = 1; // the atlas's texels, each checked against its own gradient
     const TexturedMesh mesh =
         texturedSurface(tiles, height, test::constantColours(tiles, {9, 9, 9, 255}), look);
     const TexelFrames frames = texelFrames(tiles);
@@ -120,4 +122,30 @@ TEST(TexturedSurface, ReliefIsTheSurfaceGradientOnBothSidesOfEveryEdge) {
     // gutter in the wrong frame by more.
     EXPECT_LT(worst, 0.012) << "relief " << relief;
     std::cout << "worst tangent-space normal error " << worst << "\n";
+}
+
+// The textures of 4 x 4 tiles: 16 x 16 texture texels a tile, so the 2-texel
+// gutter is 36% of the texture (75% when the atlas's texels were padded as
+// they are), and the tiled mesh's UVs reach the finer texels' corners.
+TEST(TexturedSurface, SmallTilesAreDrawnFinerSoTheGutterIsAboutAThird) {
+    for (const int n : {4, 6, 8, 16}) {
+        SCOPED_TRACE("tiles of " + std::to_string(n));
+        const SurfaceTiles tiles = test::cubeSphereTiles(n, 1.0f);
+        const TexturedMesh mesh =
+            texturedSurface(tiles, {}, test::constantColours(tiles, {10, 20, 30, 255}));
+        const int s = displayScale(*tiles.atlas, SurfaceLook{});
+        EXPECT_GE(n * s, kDisplayTileTexels);
+        const double inTiles = 6.0 * double(n * s) * double(n * s);
+        const double share = inTiles / (double(mesh.baseColour.width) * mesh.baseColour.height);
+        EXPECT_GE(share, 0.63) << mesh.baseColour.width << " x " << mesh.baseColour.height;
+        EXPECT_EQ(mesh.normalMap.width, mesh.baseColour.width);
+        // Constant colours stay constant wherever a tile is (weights sum to 1).
+        int covered = 0;
+        for (const auto& t : mesh.baseColour.texels)
+            if (t[3] != 0) {
+                ++covered;
+                ASSERT_EQ(t, (std::array<std::uint8_t, 4>{10, 20, 30, 255}));
+            }
+        EXPECT_EQ(covered, 6 * (n * s + 4) * (n * s + 4));
+    }
 }

@@ -12,7 +12,9 @@
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
+#include "core/mesh/gltf_output.hpp"
 #include "core/mesh/mesh_io.hpp"
 #include "core/mesh/mesh_samples.hpp"
 #include "core/surface/surface_glb.hpp"
@@ -195,4 +197,107 @@ TEST(UvBake, TheNormalMapAndTangentsFollowGltfsYUp) {
         }
     }
     EXPECT_GT(against, 20 * std::max(along, 1)) << against << " against +v, " << along << " along";
+}
+
+// A glTF with two materials on its primitives: the bake keeps each one (its
+// name, metalness, roughness, emission, alpha mode, sidedness) with the
+// pattern's textures, on the triangles that had it.
+TEST(UvBake, TheModelsGltfMaterialsAreKept) {
+    test::UvTorus torus = test::uvTorus();
+    const UvMesh& source = torus.mesh;
+    const std::size_t half = source.triangles.size() / 2;
+    const std::string dir = test::freshScratchDir("morphogen_uv_bake_test", "materials").string();
+    {
+        // Written with tinygltf itself: two primitives on the torus's
+        // vertices, triangles [0, half) of "bark" and the rest of "leaf".
+        tinygltf::Model model = gltf::newModel();
+        tinygltf::Primitive base;
+        base.mode = TINYGLTF_MODE_TRIANGLES;
+        gltf::addPositions(model, base, source.positions);
+        gltf::addFloatAttribute(model, base, "TEXCOORD_0", source.uvs.data(),
+                                sizeof(Eigen::Vector2f), TINYGLTF_TYPE_VEC2, source.uvs.size());
+        tinygltf::Material bark;
+        bark.name = "bark";
+        bark.pbrMetallicRoughness.metallicFactor = 0.1;
+        bark.pbrMetallicRoughness.roughnessFactor = 0.3;
+        bark.pbrMetallicRoughness.baseColorFactor = {0.5, 0.2, 0.1, 0.8};
+        bark.emissiveFactor = {0.2, 0.0, 0.05};
+        bark.alphaMode = "MASK";
+        bark.alphaCutoff = 0.25;
+        bark.doubleSided = false;
+        tinygltf::Material leaf;
+        leaf.name = "leaf";
+        leaf.doubleSided = true;
+        model.materials = {bark, leaf};
+        tinygltf::Mesh mesh;
+        for (int part = 0; part < 2; ++part) {
+            const auto first = source.triangles.begin() + (part == 0 ? 0 : std::ptrdiff_t(half));
+            const auto last = part == 0 ? source.triangles.begin() + std::ptrdiff_t(half)
+                                        : source.triangles.end();
+            const std::vector<std::array<std::uint32_t, 3>> tris(first, last);
+            tinygltf::Primitive prim = base;
+            prim.material = part;
+            prim.indices = gltf::addAccessor(
+                model,
+                gltf::addView(model, tris.data(), tris.size() * sizeof(tris[0]),
+                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, 3 * tris.size());
+            mesh.primitives.push_back(prim);
+        }
+        gltf::writeModel(model, mesh, tinygltf::Node{}, dir + "/two_materials.glb");
+    }
+    const std::optional<UvMesh> read = readUvMesh(dir + "/two_materials.glb");
+    ASSERT_TRUE(read.has_value());
+    ASSERT_EQ(read->materials.materials.size(), 2u);
+    ASSERT_EQ(read->materials.ofTriangle.size(), source.triangles.size());
+    for (std::size_t t = 0; t < source.triangles.size(); ++t)
+        ASSERT_EQ(read->materials.ofTriangle[t], t < half ? 0 : 1) << t;
+    EXPECT_EQ(read->materials.materials[0].name, "bark");
+    EXPECT_EQ(read->materials.materials[0].alphaMode, "MASK");
+
+    SurfaceColours colours;
+    const std::size_t cells = torus.tiles.atlas->cellCount();
+    colours.colours.assign(cells, {90, 160, 30, 255});
+    colours.height.assign(cells, 0.0f);
+    UvBakeOptions bake;
+    bake.size = 64;
+    const std::string out = dir + "/baked.glb";
+    writeTexturedGlb(bakeIntoUvs(*read, torus.tiles, colours, bake), out);
+
+    tinygltf::Model written;
+    tinygltf::TinyGLTF loader;
+    std::string error, warning;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&written, &error, &warning, out)) << error;
+    ASSERT_EQ(written.meshes.size(), 1u);
+    const auto& prims = written.meshes[0].primitives;
+    ASSERT_EQ(prims.size(), 2u);
+    std::size_t indices = 0;
+    for (const tinygltf::Primitive& prim : prims)
+        indices += written.accessors.at(std::size_t(prim.indices)).count;
+    EXPECT_EQ(indices, 3 * source.triangles.size());
+    const tinygltf::Material& b = written.materials.at(std::size_t(prims[0].material));
+    const tinygltf::Material& l = written.materials.at(std::size_t(prims[1].material));
+    EXPECT_EQ(b.name, "bark");
+    EXPECT_EQ(l.name, "leaf");
+    EXPECT_DOUBLE_EQ(b.pbrMetallicRoughness.metallicFactor, 0.1);
+    EXPECT_DOUBLE_EQ(b.pbrMetallicRoughness.roughnessFactor, 0.3);
+    // The pattern is the colour: the factor's colour is white, its alpha kept.
+    EXPECT_EQ(b.pbrMetallicRoughness.baseColorFactor, (std::vector<double>{1, 1, 1, 0.8}));
+    EXPECT_EQ(b.emissiveFactor, (std::vector<double>{0.2, 0.0, 0.05}));
+    EXPECT_EQ(b.alphaMode, "MASK");
+    EXPECT_DOUBLE_EQ(b.alphaCutoff, 0.25);
+    EXPECT_FALSE(b.doubleSided);
+    EXPECT_TRUE(l.doubleSided);
+    EXPECT_DOUBLE_EQ(l.pbrMetallicRoughness.roughnessFactor, 1.0); // glTF's default, as it was
+    // Both on the one baked pair of textures.
+    EXPECT_GE(b.pbrMetallicRoughness.baseColorTexture.index, 0);
+    EXPECT_EQ(b.pbrMetallicRoughness.baseColorTexture.index,
+              l.pbrMetallicRoughness.baseColorTexture.index);
+    EXPECT_EQ(b.normalTexture.index, l.normalTexture.index);
+    EXPECT_EQ(written.images.size(), 2u);
+
+    const TexturedMesh again = readTexturedGlb(out);
+    EXPECT_EQ(again.triangles.size(), source.triangles.size());
+    ASSERT_EQ(again.materials.materials.size(), 2u);
+    EXPECT_EQ(again.materials.materials[1].name, "leaf");
 }

@@ -212,11 +212,15 @@ void Designer::renderModelView(int width, int height) {
     const Session& live = m_doc.live();
     Session shown = live;
     shown.colormap = m_doc.liveColormap();
-    SurfaceColours c = surfaceColours(m_doc.run().state(), shown, *live.atlas);
+    // The atlas's own texels (scale 1): redrawn as the pattern grows, where
+    // the exports map at a finer scale.
+    SurfaceLook look;
+    look.scale = 1;
+    SurfaceColours c = surfaceColours(m_doc.run().state(), shown, *live.atlas, {}, look);
     if (m_showActiveTiles)
         tintActiveTiles(c.colours, *live.atlas);
     // The mesh and program stay; only the pattern's textures change.
-    const TexturedMesh textured = texturedSurface(m_surface->tiles, c);
+    const TexturedMesh textured = texturedSurface(m_surface->tiles, c, look);
     if (!m_modelRenderer || m_modelRendererFor != m_surface) {
         m_modelRenderer = std::make_unique<gl::SurfaceRenderer>(textured);
         m_modelRendererFor = m_surface;

@@ -164,10 +164,16 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
             UvBakeOptions bake;
             bake.size = paths.bakeSize;
             writeTexturedGlb(bakeIntoUvs(*uvs, setup.tiles, c, bake), files.stage(out));
+            const std::size_t materials = uvs->materials.materials.size();
             std::fprintf(stderr,
                          "morphogen: baked into the model's own texture coordinates: %zu "
-                         "vertices, %zu triangles, %dx%d textures\n",
-                         uvs->positions.size(), uvs->triangles.size(), bake.size, bake.size);
+                         "vertices, %zu triangles, %dx%d textures%s\n",
+                         uvs->positions.size(), uvs->triangles.size(), bake.size, bake.size,
+                         materials == 0 ? ""
+                                        : (", its " + std::to_string(materials) +
+                                           (materials == 1 ? " material" : " materials") +
+                                           " kept with the pattern as base colour and normal map")
+                                              .c_str());
         } else {
             writeTexturedGlb(texturedSurface(setup.tiles, c), files.stage(out));
         }

@@ -312,6 +312,14 @@ TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info, 
     TriangleMesh mesh;
     std::vector<Eigen::Vector2f> texcoordValues;
     std::vector<Eigen::Vector2f>* texcoords = uvs ? &texcoordValues : nullptr;
+    // Each triangle's material, for the bake into the model's UVs.
+    std::vector<std::int32_t> triangleMaterial;
+    const auto add = [&](int meshIndex, std::size_t p, const Matrix4& transform) {
+        addPrimitive(reader, model, meshIndex, p, transform, mesh, info, texcoords);
+        const int material = model.meshes[std::size_t(meshIndex)].primitives[p].material;
+        const bool known = material >= 0 && std::size_t(material) < model.materials.size();
+        triangleMaterial.resize(mesh.triangles.size(), known ? material : -1);
+    };
     const std::size_t nodeCount = model.nodes.size();
     // Nodes form trees (glTF forbids a node two parents): a node reached twice
     // is a cycle or a shared child, refused before it could multiply the work.
@@ -338,7 +346,7 @@ TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info, 
                                 std::to_string(model.meshes.size()));
                 for (std::size_t p = 0; p < model.meshes[std::size_t(node.mesh)].primitives.size();
                      ++p)
-                    addPrimitive(reader, model, node.mesh, p, transform, mesh, info, texcoords);
+                    add(node.mesh, p, transform);
             }
             // Reversed, so children come out of the stack in file order.
             for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
@@ -369,7 +377,7 @@ TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info, 
         // No scene and no nodes: the meshes as they are.
         for (std::size_t m = 0; m < model.meshes.size(); ++m)
             for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p)
-                addPrimitive(reader, model, int(m), p, Matrix4::Identity(), mesh, info, texcoords);
+                add(int(m), p, Matrix4::Identity());
     }
     // Every primitive had its texture coordinates: glTF's vertices are
     // already one per (position, texture coordinate), and its v runs down.
@@ -377,6 +385,25 @@ TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info, 
         uvs->positions = mesh.positions;
         uvs->uvs = std::move(texcoordValues);
         uvs->triangles = mesh.triangles;
+        if (!model.materials.empty()) {
+            for (const tinygltf::Material& m : model.materials) {
+                MeshMaterial kept;
+                kept.name = m.name;
+                const auto& pbr = m.pbrMetallicRoughness;
+                if (pbr.baseColorFactor.size() == 4)
+                    kept.baseColourAlpha = pbr.baseColorFactor[3];
+                kept.metallic = pbr.metallicFactor;
+                kept.roughness = pbr.roughnessFactor;
+                for (std::size_t k = 0; k < 3 && k < m.emissiveFactor.size(); ++k)
+                    kept.emissive[k] = m.emissiveFactor[k];
+                if (!m.alphaMode.empty())
+                    kept.alphaMode = m.alphaMode;
+                kept.alphaCutoff = m.alphaCutoff;
+                kept.doubleSided = m.doubleSided;
+                uvs->materials.materials.push_back(kept);
+            }
+            uvs->materials.ofTriangle = std::move(triangleMaterial);
+        }
     }
     return mesh;
 }

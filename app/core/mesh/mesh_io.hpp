@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/mesh/mesh_material.hpp"
 #include "core/mesh/mesh_repair.hpp"
 #include "core/mesh/triangle_mesh.hpp"
 
@@ -59,12 +60,13 @@ struct UvMesh {
     std::vector<Eigen::Vector3f> positions;
     std::vector<Eigen::Vector2f> uvs; // glTF's convention: v = 0 is the image's top row
     std::vector<std::array<std::uint32_t, 3>> triangles;
+    MeshMaterials materials; // a glTF's; none for an OBJ
 };
 
 // The file's first texture coordinates, for baking into them: an OBJ whose
 // every face has them ("vt", flipped to glTF's v down), a glTF whose every
 // primitive has TEXCOORD_0 (node transforms applied to the positions, as
-// readMeshFile does). Nothing for a file without them everywhere. Throws
+// readMeshFile does; with the glTF's materials). Nothing for a file without them everywhere. Throws
 // InputError as readMeshFile does.
 std::optional<UvMesh> readUvMesh(const std::string& path);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
@@ -68,7 +69,10 @@ Layout inTheAtlas(const SurfaceTiles& tiles, const SurfaceColours& colours,
                   const HeightSpec& spec) {
     const Atlas& atlas = *tiles.atlas;
     const SurfaceLook look;
-    const DisplayAtlas display(atlas, look.gutter);
+    std::shared_ptr<const DisplayAtlas> made = colours.displayAtlas;
+    if (!made || made->scale() != displayScale(atlas, look) || made->gutter() != look.gutter)
+        made = std::make_shared<const DisplayAtlas>(atlas, look.gutter, displayScale(atlas, look));
+    const DisplayAtlas& display = *made;
     Layout out;
     out.width = display.width();
     out.height = display.height();
@@ -81,7 +85,7 @@ Layout inTheAtlas(const SurfaceTiles& tiles, const SurfaceColours& colours,
     out.heightMap = display.pad(cellHeight, 1);
     out.covered.assign(display.texelCount(), 0);
     for (std::size_t p = 0; p < display.texelCount(); ++p)
-        out.covered[p] = display.sources(p).empty() ? 0 : 1;
+        out.covered[p] = display.covered(p) ? 1 : 0;
     const TexelFrames frames = texelFrames(tiles);
     out.normal = bakeNormalMap(atlas, display, cellHeight, frames,
                                look.bump * frames.meanTexelLength * spec.normalStrength);

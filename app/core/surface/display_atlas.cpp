@@ -25,12 +25,15 @@ std::uint32_t walkOut(const Atlas& atlas, std::uint32_t start, Direction dx, int
 
 } // namespace
 
-DisplayAtlas::DisplayAtlas(const Atlas& atlas, int gutter)
-    : m_tileSize(atlas.tileSize()), m_gutter(gutter), m_tileCount(atlas.tileCount()),
-      m_tilesPerRow(atlas.tilesPerRow()) {
+DisplayAtlas::DisplayAtlas(const Atlas& atlas, int gutter, int scale)
+    : m_tileSize(atlas.tileSize()), m_gutter(gutter), m_scale(scale),
+      m_tileCount(atlas.tileCount()), m_tilesPerRow(atlas.tilesPerRow()) {
     if (gutter < 1)
         throw std::invalid_argument("DisplayAtlas: gutter " + std::to_string(gutter) +
                                     " must be at least 1 texel");
+    if (scale < 1)
+        throw std::invalid_argument("DisplayAtlas: scale " + std::to_string(scale) +
+                                    " must be at least 1 texel per atlas texel");
     const int padded = paddedTileSize();
     const int rows = (m_tileCount + m_tilesPerRow - 1) / m_tilesPerRow;
     const long long width = (long long)(m_tilesPerRow)*padded;
@@ -42,6 +45,10 @@ DisplayAtlas::DisplayAtlas(const Atlas& atlas, int gutter)
                                     " on a side");
     m_width = int(width);
     m_height = int(height);
+    if (m_scale > 1) {
+        interpolate(atlas);
+        return;
+    }
 
     // Per padded texel its sources, gathered per tile then laid out row-major.
     std::vector<std::vector<Source>> perTexel(texelCount());
@@ -98,6 +105,56 @@ DisplayAtlas::DisplayAtlas(const Atlas& atlas, int gutter)
     }
 }
 
+void DisplayAtlas::interpolate(const Atlas& atlas) {
+    // The unscaled padded atlas with enough gutter for the bilinear
+    // footprint of every display texel, gutter included: display texel u's
+    // centre lies at atlas coordinate (u + 0.5) / s - 0.5, whose lower
+    // neighbour is at least -(ceil(g / s) + 1).
+    const int s = m_scale, n = m_tileSize, g = m_gutter;
+    const DisplayAtlas base(atlas, (g + s - 1) / s + 1, 1);
+    std::vector<std::vector<Source>> perTexel(texelCount());
+    for (int t = 0; t < m_tileCount; ++t)
+        for (int v = -g; v < n * s + g; ++v)
+            for (int u = -g; u < n * s + g; ++u) {
+                const float x = (float(u) + 0.5f) / float(s) - 0.5f;
+                const float y = (float(v) + 0.5f) / float(s) - 0.5f;
+                const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+                const float fx = x - float(x0), fy = y - float(y0);
+                const std::array<int, 2> xy = texel(t, u, v);
+                std::vector<Source>& out = perTexel[std::size_t(xy[1]) * m_width + xy[0]];
+                const float weights[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy,
+                                          fx * fy};
+                for (int k = 0; k < 4; ++k) {
+                    if (weights[k] == 0.0f)
+                        continue;
+                    const std::array<int, 2> b = base.texel(t, x0 + (k & 1), y0 + (k >> 1));
+                    for (const Source& src :
+                         base.sources(std::size_t(b[1]) * base.width() + b[0])) {
+                        const auto same =
+                            std::find_if(out.begin(), out.end(),
+                                         [&](const Source& o) { return o.cell == src.cell; });
+                        if (same != out.end())
+                            same->weight += weights[k] * src.weight;
+                        else
+                            out.push_back({src.cell, weights[k] * src.weight});
+                    }
+                }
+            }
+    m_first.reserve(texelCount() + 1);
+    m_first.push_back(0);
+    for (const std::vector<Source>& sources : perTexel) {
+        m_sources.insert(m_sources.end(), sources.begin(), sources.end());
+        m_first.push_back(std::uint32_t(m_sources.size()));
+    }
+}
+
+std::array<int, 2> DisplayAtlas::atlasTexel(int u, int v) const {
+    const auto nearest = [&](int d) {
+        return std::clamp(int(std::floor(float(d) / float(m_scale))), 0, m_tileSize - 1);
+    };
+    return {nearest(u), nearest(v)};
+}
+
 std::array<int, 2> DisplayAtlas::texel(int tile, int u, int v) const {
     const int padded = paddedTileSize();
     return {(tile % m_tilesPerRow) * padded + m_gutter + u,
@@ -105,7 +162,7 @@ std::array<int, 2> DisplayAtlas::texel(int tile, int u, int v) const {
 }
 
 Eigen::Vector2f DisplayAtlas::cornerUv(int tile, int i, int j) const {
-    const std::array<int, 2> xy = texel(tile, i, j);
+    const std::array<int, 2> xy = texel(tile, i * m_scale, j * m_scale);
     return {float(xy[0]) / float(m_width), float(xy[1]) / float(m_height)};
 }
 

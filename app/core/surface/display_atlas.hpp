@@ -26,28 +26,40 @@ namespace morphogen {
 // mean of the k corner texels around it, the same value from every tile (for
 // k = 3, 4, 5; see the .cpp).
 //
+// With a scale s > 1 each atlas texel is s x s texels of the image (n s + 2g
+// per padded tile): a display texel is the bilinear interpolation, at its
+// centre, of the atlas texels round it (the gutter's ones across the edges),
+// so a colour map applied to the interpolated values draws sharp contours
+// where s = 1 would draw texel-sized steps, and the gutter is a smaller share
+// of the texture (4 x 4 tiles: 75% at s = 1, 36% at s = 4 with g = 2).
+//
 // Row 0 of the padded image is the atlas's row 0 (texture coordinate v = 0):
 // the first row uploaded to GL and the top row of a PNG, which is where glTF
 // puts v = 0, so one UV serves both.
 class DisplayAtlas {
 public:
-    // Throws std::invalid_argument for gutter < 1 or a padded image 65536
-    // texels or more on a side.
-    explicit DisplayAtlas(const Atlas& atlas, int gutter = 2);
+    // Throws std::invalid_argument for gutter < 1, scale < 1 or a padded
+    // image 65536 texels or more on a side.
+    explicit DisplayAtlas(const Atlas& atlas, int gutter = 2, int scale = 1);
 
-    int tileSize() const { return m_tileSize; }
-    int gutter() const { return m_gutter; }
-    int paddedTileSize() const { return m_tileSize + 2 * m_gutter; }
+    int tileSize() const { return m_tileSize; } // atlas texels
+    int gutter() const { return m_gutter; }     // display texels
+    int scale() const { return m_scale; }
+    // Display texels on a tile's side, gutter excluded.
+    int displayTileSize() const { return m_tileSize * m_scale; }
+    int paddedTileSize() const { return displayTileSize() + 2 * m_gutter; }
     int tileCount() const { return m_tileCount; }
     int width() const { return m_width; }
     int height() const { return m_height; }
     std::size_t texelCount() const { return std::size_t(m_width) * std::size_t(m_height); }
 
-    // The padded texel of texel (u, v) of a tile (u, v in -g .. n - 1 + g),
+    // The padded texel of display texel (u, v) of a tile (u, v in -g .. ns - 1 + g),
     // in the tile's own frame.
     std::array<int, 2> texel(int tile, int u, int v) const;
-    // Texture coordinate in [0, 1]^2 of texel corner (i, j), i, j in 0..n,
-    // of a tile (the corner between texels i - 1 and i).
+    // The tile's atlas texel nearest to display texel (u, v) (clamped to the tile).
+    std::array<int, 2> atlasTexel(int u, int v) const;
+    // Texture coordinate in [0, 1]^2 of atlas texel corner (i, j), i, j in 0..n,
+    // of a tile (the corner between atlas texels i - 1 and i).
     Eigen::Vector2f cornerUv(int tile, int i, int j) const;
     // The tile's padded rectangle (gutter included) in texture coordinates:
     // {u0, v0, u1, v1}.
@@ -68,9 +80,15 @@ public:
         float weight;
     };
     std::vector<Source> sources(std::size_t paddedTexel) const;
+    // Whether the padded texel belongs to a tile (has sources).
+    bool covered(std::size_t paddedTexel) const {
+        return m_first[paddedTexel + 1] > m_first[paddedTexel];
+    }
 
 private:
-    int m_tileSize, m_gutter, m_tileCount, m_tilesPerRow, m_width, m_height;
+    void interpolate(const Atlas& atlas);
+
+    int m_tileSize, m_gutter, m_scale, m_tileCount, m_tilesPerRow, m_width, m_height;
     // Compressed rows: the sources of padded texel p are m_sources[m_first[p] .. m_first[p+1]).
     std::vector<std::uint32_t> m_first;
     std::vector<Source> m_sources;

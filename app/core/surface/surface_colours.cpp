@@ -30,10 +30,40 @@ void addWater(const State& state, const Atlas& atlas, SurfaceColours& c) {
     c.relief = kWaterRelief * std::min(deepest / kWetDepth, 1.0f);
 }
 
+// Every chemical interpolated to the display's texels (the watercolour map
+// reads them all), then the map applied there at the atlas's levels.
+void mapAtDisplay(const State& state, int chemical, const ColorMapSpec& spec, float low, float high,
+                  std::shared_ptr<const DisplayAtlas> display, SurfaceColours& c) {
+    State fine(display->width(), display->height(), state.channels());
+    std::vector<float> cells(state.cellCount());
+    for (int k = 0; k < state.channels(); ++k) {
+        std::copy(state.plane(k), state.plane(k) + state.cellCount(), cells.begin());
+        const std::vector<float> padded = display->pad(cells, 1);
+        std::copy(padded.begin(), padded.end(), fine.plane(k));
+    }
+    const ColourMapRows rows(fine, chemical, spec, low, high);
+    c.display.assign(display->texelCount(), {0, 0, 0, 0});
+    std::vector<float> rgb(std::size_t(fine.width()) * 3);
+    for (int y = 0; y < fine.height(); ++y) {
+        rows.row(y, rgb.data());
+        for (int x = 0; x < fine.width(); ++x) {
+            const std::size_t p = std::size_t(y) * fine.width() + x;
+            if (!display->covered(p))
+                continue;
+            for (int k = 0; k < 3; ++k)
+                c.display[p][std::size_t(k)] = std::uint8_t(
+                    std::lround(std::clamp(rgb[std::size_t(x) * 3 + k], 0.0f, 1.0f) * 255.0f));
+            c.display[p][3] = 255;
+        }
+    }
+    c.displayAtlas = std::move(display);
+}
+
 } // namespace
 
 SurfaceColours surfaceColours(const State& state, const Session& session, const Atlas& atlas,
-                              const std::optional<std::pair<float, float>>& levels) {
+                              const std::optional<std::pair<float, float>>& levels,
+                              const SurfaceLook& look) {
     const int chemical = colormapChemical(session.colormap, session.outputModel());
     const float* plane = state.plane(chemical);
     float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
@@ -72,6 +102,10 @@ SurfaceColours surfaceColours(const State& state, const Session& session, const 
     }
     if (water)
         addWater(state, atlas, c);
+    const int scale = displayScale(atlas, look);
+    if (scale > 1)
+        mapAtDisplay(state, chemical, colormapOn(session.colormap, session), low, high,
+                     std::make_shared<const DisplayAtlas>(atlas, look.gutter, scale), c);
     return c;
 }
 

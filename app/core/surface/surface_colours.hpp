@@ -2,12 +2,15 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
 
 #include "core/base/state.hpp"
 #include "core/session/session.hpp"
+#include "core/surface/display_atlas.hpp"
+#include "core/surface/textured_surface.hpp"
 
 namespace morphogen {
 
@@ -30,6 +33,12 @@ struct SurfaceColours {
     std::vector<std::array<std::uint8_t, 4>> colours;
     std::vector<float> wetness; // empty: no water to show
     float relief = 1.0f;        // scales SurfaceLook::bump
+    // At a look's scale above 1: every chemical interpolated to the texels
+    // of `displayAtlas` and mapped there, so a contour is as sharp as the
+    // texture allows instead of the atlas texels' colours blended (alpha 0
+    // where no tile is). Empty at scale 1: `colours` are padded as they are.
+    std::shared_ptr<const DisplayAtlas> displayAtlas;
+    std::vector<std::array<std::uint8_t, 4>> display;
 };
 
 // Water this deep (model units of the "w" chemical) looks fully wet.
@@ -40,6 +49,7 @@ constexpr float kWaterRelief = 3.0f;
 // `levels`, when given, replace the min-max range of the display chemical (a
 // frame sequence's locked levels).
 SurfaceColours surfaceColours(const State& state, const Session& session, const Atlas& atlas,
-                              const std::optional<std::pair<float, float>>& levels = {});
+                              const std::optional<std::pair<float, float>>& levels = {},
+                              const SurfaceLook& look = {});
 
 } // namespace morphogen

@@ -99,15 +99,15 @@ void writeTexturedGlb(const TexturedMesh& mesh, const std::string& path) {
         throw std::invalid_argument("writeTexturedGlb: every vertex needs a normal, a tangent "
                                     "and a texture coordinate");
 
+    const MeshMaterials& kept = mesh.materials;
+    if (!kept.ofTriangle.empty() && kept.ofTriangle.size() != mesh.triangles.size())
+        throw std::invalid_argument("writeTexturedGlb: " + std::to_string(kept.ofTriangle.size()) +
+                                    " triangle materials for " +
+                                    std::to_string(mesh.triangles.size()) + " triangles");
+
     tinygltf::Model model = gltf::newModel();
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.indices = gltf::addAccessor(
-        model,
-        gltf::addView(model, mesh.triangles.data(),
-                      mesh.triangles.size() * sizeof(mesh.triangles[0]),
-                      TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-        TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, 3 * mesh.triangles.size());
     gltf::addPositions(model, prim, mesh.positions);
     gltf::addFloatAttribute(model, prim, "NORMAL", mesh.normals.data(), sizeof(Eigen::Vector3f),
                             TINYGLTF_TYPE_VEC3, n);
@@ -137,11 +137,45 @@ void writeTexturedGlb(const TexturedMesh& mesh, const std::string& path) {
     material.normalTexture.index = addPngTexture(model, mesh.normalMap, "normal map");
     // Open surfaces show their back.
     material.doubleSided = true;
-    model.materials.push_back(material);
-    prim.material = 0;
+
+    // One primitive per material, all on the same vertices and textures:
+    // the model's own materials keep what the artist set besides the colour
+    // and relief the pattern brings; triangles of none get the exporter's.
+    std::vector<std::vector<std::array<std::uint32_t, 3>>> groups(kept.materials.size() + 1);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const std::int32_t m = kept.ofTriangle.empty() ? -1 : kept.ofTriangle[t];
+        const bool known = m >= 0 && std::size_t(m) < kept.materials.size();
+        groups[known ? std::size_t(m) + 1 : 0].push_back(mesh.triangles[t]);
+    }
     tinygltf::Mesh gltfMesh;
     gltfMesh.name = "surface";
-    gltfMesh.primitives.push_back(prim);
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        if (groups[g].empty())
+            continue;
+        tinygltf::Material own = material;
+        if (g > 0) {
+            const MeshMaterial& m = kept.materials[g - 1];
+            own.name = m.name;
+            own.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, m.baseColourAlpha};
+            if (mesh.metallicRoughness.width == 0) {
+                own.pbrMetallicRoughness.metallicFactor = m.metallic;
+                own.pbrMetallicRoughness.roughnessFactor = m.roughness;
+            }
+            own.emissiveFactor = {m.emissive[0], m.emissive[1], m.emissive[2]};
+            own.alphaMode = m.alphaMode;
+            own.alphaCutoff = m.alphaCutoff;
+            own.doubleSided = m.doubleSided;
+        }
+        model.materials.push_back(own);
+        tinygltf::Primitive part = prim;
+        part.material = int(model.materials.size() - 1);
+        part.indices = gltf::addAccessor(
+            model,
+            gltf::addView(model, groups[g].data(), groups[g].size() * sizeof(groups[g][0]),
+                          TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, 3 * groups[g].size());
+        gltfMesh.primitives.push_back(part);
+    }
     gltf::writeModel(model, std::move(gltfMesh), tinygltf::Node{}, path);
 }
 
@@ -157,9 +191,13 @@ TexturedMesh readTexturedGlb(const std::string& path) {
     std::string error, warning;
     if (!loader.LoadBinaryFromFile(&model, &error, &warning, path))
         throw InputError(path + ": not a readable GLB (" + error + ")");
-    if (model.meshes.size() != 1 || model.meshes[0].primitives.size() != 1)
-        throw InputError(path + ": expected one mesh of one primitive");
-    const tinygltf::Primitive& prim = model.meshes[0].primitives[0];
+    if (model.meshes.size() != 1 || model.meshes[0].primitives.empty())
+        throw InputError(path + ": expected one mesh");
+    const std::vector<tinygltf::Primitive>& prims = model.meshes[0].primitives;
+    const tinygltf::Primitive& prim = prims[0];
+    for (const tinygltf::Primitive& other : prims)
+        if (other.attributes != prim.attributes)
+            throw InputError(path + ": the primitives do not share their vertices");
     auto attribute = [&](const char* name) {
         const auto it = prim.attributes.find(name);
         return it == prim.attributes.end() ? -1 : it->second;
@@ -183,26 +221,47 @@ TexturedMesh readTexturedGlb(const std::string& path) {
         mesh.tangents.emplace_back(tan[4 * i], tan[4 * i + 1], tan[4 * i + 2], tan[4 * i + 3]);
     }
 
-    if (prim.indices < 0 || std::size_t(prim.indices) >= model.accessors.size())
-        throw InputError(path + ": the primitive has no indices");
-    const tinygltf::Accessor& ia = model.accessors[std::size_t(prim.indices)];
-    if (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT || ia.count % 3 != 0 ||
-        ia.bufferView < 0 || std::size_t(ia.bufferView) >= model.bufferViews.size())
-        throw InputError(path + ": the indices are not uint32 triangles");
-    const tinygltf::BufferView& iv = model.bufferViews[std::size_t(ia.bufferView)];
-    const std::vector<unsigned char>& data = model.buffers.at(std::size_t(iv.buffer)).data;
-    if (iv.byteOffset + ia.byteOffset + ia.count * 4 > data.size() ||
-        ia.byteOffset + ia.count * 4 > iv.byteLength)
-        throw InputError(path + ": the indices run past their buffer");
-    mesh.triangles.resize(ia.count / 3);
-    std::memcpy(mesh.triangles.data(), &data[iv.byteOffset + ia.byteOffset], ia.count * 4);
+    for (const tinygltf::Primitive& part : prims) {
+        if (part.indices < 0 || std::size_t(part.indices) >= model.accessors.size())
+            throw InputError(path + ": a primitive has no indices");
+        const tinygltf::Accessor& ia = model.accessors[std::size_t(part.indices)];
+        if (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT || ia.count % 3 != 0 ||
+            ia.bufferView < 0 || std::size_t(ia.bufferView) >= model.bufferViews.size())
+            throw InputError(path + ": the indices are not uint32 triangles");
+        const tinygltf::BufferView& iv = model.bufferViews[std::size_t(ia.bufferView)];
+        const std::vector<unsigned char>& data = model.buffers.at(std::size_t(iv.buffer)).data;
+        if (iv.byteOffset + ia.byteOffset + ia.count * 4 > data.size() ||
+            ia.byteOffset + ia.count * 4 > iv.byteLength)
+            throw InputError(path + ": the indices run past their buffer");
+        const std::size_t first = mesh.triangles.size();
+        mesh.triangles.resize(first + ia.count / 3);
+        std::memcpy(mesh.triangles.data() + first, &data[iv.byteOffset + ia.byteOffset],
+                    ia.count * 4);
+        if (part.material < 0 || std::size_t(part.material) >= model.materials.size())
+            throw InputError(path + ": a primitive has no material");
+        if (prims.size() > 1) {
+            // Several materials: each primitive's, as writeTexturedGlb keeps them.
+            const tinygltf::Material& m = model.materials[std::size_t(part.material)];
+            MeshMaterial kept;
+            kept.name = m.name;
+            kept.baseColourAlpha = m.pbrMetallicRoughness.baseColorFactor.at(3);
+            kept.metallic = m.pbrMetallicRoughness.metallicFactor;
+            kept.roughness = m.pbrMetallicRoughness.roughnessFactor;
+            for (std::size_t k = 0; k < 3 && k < m.emissiveFactor.size(); ++k)
+                kept.emissive[k] = m.emissiveFactor[k];
+            kept.alphaMode = m.alphaMode;
+            kept.alphaCutoff = m.alphaCutoff;
+            kept.doubleSided = m.doubleSided;
+            mesh.materials.materials.push_back(kept);
+            mesh.materials.ofTriangle.resize(mesh.triangles.size(),
+                                             std::int32_t(mesh.materials.materials.size() - 1));
+        }
+    }
     for (const auto& t : mesh.triangles)
         for (const std::uint32_t v : t)
             if (v >= n)
                 throw InputError(path + ": vertex index " + std::to_string(v) + " out of range");
 
-    if (prim.material < 0 || std::size_t(prim.material) >= model.materials.size())
-        throw InputError(path + ": the primitive has no material");
     const tinygltf::Material& material = model.materials[std::size_t(prim.material)];
     mesh.baseColour = textureImage(model, material.pbrMetallicRoughness.baseColorTexture.index,
                                    path, "base colour texture");

@@ -29,8 +29,9 @@ void exportSurfaceGlb(const SurfaceTiles& tiles, const std::vector<float>& heigh
 
 // Reads back a GLB that writeTexturedGlb wrote (or any GLB of one textured
 // triangle primitive with those attributes, float attributes and 8-bit
-// RGB/RGBA PNG textures): for tests and for drawing an exported model with the
-// same renderer. Throws InputError naming the file and what is missing.
+// RGB/RGBA PNG textures; several primitives on the same vertices, one per
+// material, come back as one mesh with its materials): for tests and for drawing an exported model
+// with the same renderer. Throws InputError naming the file and what is missing.
 TexturedMesh readTexturedGlb(const std::string& path);
 
 } // namespace morphogen

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -66,7 +67,6 @@ Eigen::Vector4f gridTangent(const SurfaceTiles& tiles, int tile, int i, int j) {
 
 RgbaImage bakeNormalMap(const Atlas& atlas, const DisplayAtlas& display,
                         const std::vector<float>& height, const TexelFrames& frames, float relief) {
-    const int n = display.tileSize();
     // Per cell, the normal's tilt in world space, -relief times the surface
     // gradient g: the least-squares fit h(q) - h(p) = g . (q - p) over the
     // four neighbours q (through the connectivity, across tile edges), with
@@ -109,12 +109,12 @@ RgbaImage bakeNormalMap(const Atlas& atlas, const DisplayAtlas& display,
     image.width = display.width();
     image.height = display.height();
     image.texels.assign(display.texelCount(), encodeNormal({0, 0, 1}));
-    const int g = display.gutter();
+    const int g = display.gutter(), side = display.displayTileSize();
     for (int t = 0; t < display.tileCount(); ++t)
-        for (int v = -g; v < n + g; ++v)
-            for (int u = -g; u < n + g; ++u) {
-                const std::uint32_t cell =
-                    atlas.tileCell(t, std::clamp(u, 0, n - 1), std::clamp(v, 0, n - 1));
+        for (int v = -g; v < side + g; ++v)
+            for (int u = -g; u < side + g; ++u) {
+                const std::array<int, 2> nearest = display.atlasTexel(u, v);
+                const std::uint32_t cell = atlas.tileCell(t, nearest[0], nearest[1]);
                 const std::array<int, 2> xy = display.texel(t, u, v);
                 const std::size_t p = std::size_t(xy[1]) * image.width + xy[0];
                 const Eigen::Vector3f w(padded[p * 3], padded[p * 3 + 1], padded[p * 3 + 2]);
@@ -181,9 +181,22 @@ TexelFrames texelFrames(const SurfaceTiles& tiles) {
     return frames;
 }
 
-TexturedMesh texturedSurface(const SurfaceTiles& tiles, const std::vector<float>& height,
-                             const std::vector<std::array<std::uint8_t, 4>>& colours,
-                             const SurfaceLook& look) {
+int displayScale(const Atlas& atlas, const SurfaceLook& look) {
+    if (look.scale > 0)
+        return look.scale;
+    const int n = std::max(atlas.tileSize(), 1);
+    return std::clamp((kDisplayTileTexels + n - 1) / n, 1, 8);
+}
+
+namespace {
+
+// texturedSurface on a given display atlas; `mapped`, when not null, the
+// base colour per padded texel (SurfaceColours::display), else `colours` are padded.
+TexturedMesh texturedOn(const SurfaceTiles& tiles, const DisplayAtlas& display,
+                        const std::vector<float>& height,
+                        const std::vector<std::array<std::uint8_t, 4>>& colours,
+                        const std::vector<std::array<std::uint8_t, 4>>* mapped,
+                        const SurfaceLook& look) {
     if (!tiles.atlas)
         throw std::invalid_argument("texturedSurface: the tiles have no atlas");
     const Atlas& atlas = *tiles.atlas;
@@ -201,7 +214,6 @@ TexturedMesh texturedSurface(const SurfaceTiles& tiles, const std::vector<float>
             " grid positions for " + std::to_string(atlas.tileCount()) +
             " tiles of (n+1)^2 = " + std::to_string(perTile));
 
-    const DisplayAtlas display(atlas, look.gutter);
     TexturedMesh mesh;
     mesh.positions = tiles.gridPositions;
     mesh.normals.resize(mesh.positions.size());
@@ -244,7 +256,7 @@ TexturedMesh texturedSurface(const SurfaceTiles& tiles, const std::vector<float>
 
     mesh.baseColour.width = display.width();
     mesh.baseColour.height = display.height();
-    mesh.baseColour.texels = display.pad(colours);
+    mesh.baseColour.texels = mapped ? *mapped : display.pad(colours);
     const TexelFrames frames = texelFrames(tiles);
     mesh.normalMap =
         bakeNormalMap(atlas, display,
@@ -254,14 +266,35 @@ TexturedMesh texturedSurface(const SurfaceTiles& tiles, const std::vector<float>
     return mesh;
 }
 
+} // namespace
+
+TexturedMesh texturedSurface(const SurfaceTiles& tiles, const std::vector<float>& height,
+                             const std::vector<std::array<std::uint8_t, 4>>& colours,
+                             const SurfaceLook& look) {
+    if (!tiles.atlas)
+        throw std::invalid_argument("texturedSurface: the tiles have no atlas");
+    const DisplayAtlas display(*tiles.atlas, look.gutter, displayScale(*tiles.atlas, look));
+    return texturedOn(tiles, display, height, colours, nullptr, look);
+}
+
 TexturedMesh texturedSurface(const SurfaceTiles& tiles, const SurfaceColours& colours,
                              const SurfaceLook& look) {
+    if (!tiles.atlas)
+        throw std::invalid_argument("texturedSurface: the tiles have no atlas");
+    const Atlas& atlas = *tiles.atlas;
+    const int scale = displayScale(atlas, look);
+    std::shared_ptr<const DisplayAtlas> display = colours.displayAtlas;
+    const bool mapped = display && display->gutter() == look.gutter && display->scale() == scale &&
+                        display->tileCount() == atlas.tileCount() &&
+                        colours.display.size() == display->texelCount();
+    if (!mapped)
+        display = std::make_shared<const DisplayAtlas>(atlas, look.gutter, scale);
     SurfaceLook scaled = look;
     scaled.bump = look.bump * colours.relief;
-    TexturedMesh mesh = texturedSurface(tiles, colours.height, colours.colours, scaled);
+    TexturedMesh mesh = texturedOn(tiles, *display, colours.height, colours.colours,
+                                   mapped ? &colours.display : nullptr, scaled);
     if (colours.wetness.empty())
         return mesh;
-    const Atlas& atlas = *tiles.atlas;
     if (colours.wetness.size() != atlas.cellCount())
         throw std::invalid_argument("texturedSurface: " + std::to_string(colours.wetness.size()) +
                                     " wetness values for " + std::to_string(atlas.cellCount()) +
@@ -272,10 +305,9 @@ TexturedMesh texturedSurface(const SurfaceTiles& tiles, const SurfaceColours& co
         const float r = kDryRoughness + (kWetRoughness - kDryRoughness) * wet;
         roughness[i] = {255, std::uint8_t(std::lround(r * 255.0f)), 0, 255};
     }
-    const DisplayAtlas display(atlas, look.gutter);
-    mesh.metallicRoughness.width = display.width();
-    mesh.metallicRoughness.height = display.height();
-    mesh.metallicRoughness.texels = display.pad(roughness);
+    mesh.metallicRoughness.width = display->width();
+    mesh.metallicRoughness.height = display->height();
+    mesh.metallicRoughness.texels = display->pad(roughness);
     return mesh;
 }
 

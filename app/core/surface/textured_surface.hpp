@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "core/mesh/mesh_material.hpp"
 #include "core/surface/display_atlas.hpp"
 #include "core/surface/surface_tiles.hpp"
 
@@ -41,16 +42,32 @@ struct TexturedMesh {
     // on a rough surface, from SurfaceColours::wetness); 0 x 0 when it is dry
     // everywhere (roughness 0.7, the renderer's plain shading).
     RgbaImage metallicRoughness;
+    // The model's own materials, per triangle (a bake into its UVs): each
+    // gets the textures above and keeps the rest (writeTexturedGlb). Empty:
+    // one material of the exporter's.
+    MeshMaterials materials;
 };
 
 struct SurfaceLook {
     int gutter = 2; // texels round each tile in the textures (DisplayAtlas)
+    // Texture texels per atlas texel along a side (DisplayAtlas's scale); 0:
+    // displayScale's choice. 1 pads the atlas as it is (the designer's live
+    // view, redrawn as the pattern grows).
+    int scale = 0;
     // Bump mapping (Turk 1991, "Rendering"): the height, min-max normalised
     // to 0..1, acts as a relief `bump` mean texel lengths high (bakeNormalMap;
     // measured on the surface, so stretched or skewed texels get the same
     // relief). 0: no relief.
     float bump = 2.0f;
 };
+
+// Tiles of at least this many texture texels on a side: the gutter then
+// takes at most 36% of the texture (g = 2) and a spot's edge is drawn over
+// several texels, where 4 x 4 tiles padded as they are spend 75% on gutter.
+constexpr int kDisplayTileTexels = 16;
+// look.scale, or the smallest scale that makes the tiles kDisplayTileTexels
+// wide (at most 8).
+int displayScale(const Atlas& atlas, const SurfaceLook& look);
 
 // The tiles' (n+1)^2 grids as triangles (two per texel square, split along
 // the shorter diagonal and wound with the grid normals), UVs into the padded
@@ -65,7 +82,10 @@ TexturedMesh texturedSurface(const SurfaceTiles& tiles, const std::vector<float>
 
 // The same from a state's SurfaceColours: its relief scales look.bump, and a
 // non-empty wetness gives the mesh its metallic-roughness texture (roughness
-// mix(kDryRoughness, kWetRoughness, wetness), padded as the colours).
+// mix(kDryRoughness, kWetRoughness, wetness), padded as the colours). Colours
+// mapped at the texture's resolution (SurfaceColours::display, made for the
+// same gutter and scale) are used as they are.
+
 struct SurfaceColours;
 constexpr float kDryRoughness = 0.7f;
 constexpr float kWetRoughness = 0.08f;

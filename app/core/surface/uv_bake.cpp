@@ -371,6 +371,7 @@ TexturedMesh uvBakedMesh(const UvMesh& mesh, RgbaImage baseColour, RgbaImage nor
     out.positions = mesh.positions;
     out.uvs = mesh.uvs;
     out.triangles = mesh.triangles;
+    out.materials = mesh.materials;
     vertexFrames(mesh, out.normals, out.tangents);
     out.baseColour = std::move(baseColour);
     out.normalMap = std::move(normalMap);
