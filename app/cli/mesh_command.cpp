@@ -10,6 +10,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/flag_values.hpp"
+#include "cli/surface_flags.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/image_io.hpp"
 #include "core/mesh/mesh_check.hpp"
@@ -34,6 +35,7 @@ struct MeshInfoFlags {
     std::string json;
     bool noRepair = false;
     std::string mergeDistance;
+    std::string wrap;
 };
 
 void meshInfo(const MeshInfoFlags& f) {
@@ -50,6 +52,8 @@ void meshInfo(const MeshInfoFlags& f) {
     spec.mesh = f.file;
     spec.repair = repair.enabled;
     spec.mergeDistance = repair.mergeDistance;
+    if (!f.wrap.empty())
+        spec.wrap = *parseWrapMode(f.wrap); // checked by the option
     const LoadedMesh loaded = loadSurfaceMesh(spec, "");
     const double loadSeconds = secondsSince(start);
     const Clock::time_point checkStart = Clock::now();
@@ -130,6 +134,8 @@ void addMeshCommands(CLI::App& app) {
     cmd->add_option("--merge-distance", info->mergeDistance,
                     "merge open-boundary vertices closer than this fraction of the bounding "
                     "box's diagonal (0..0.01, default 1e-5; 0: off)");
+    cmd->add_option("--wrap", info->wrap, kWrapHelp)
+        ->check(CLI::IsMember({"auto", "always", "never"}));
     cmd->callback([info] { meshInfo(*info); });
 
     auto gen = std::make_shared<MeshGenFlags>();

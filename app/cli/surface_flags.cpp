@@ -101,6 +101,9 @@ void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
                    "merge open-boundary vertices closer than this fraction of the bounding box's "
                    "diagonal (0..0.01, default 1e-5; 0: off), as Merge by Distance does")
         ->group(group);
+    cmd.add_option("--wrap", f.wrap, kWrapHelp)
+        ->check(CLI::IsMember({"auto", "always", "never"}))
+        ->group(group);
     cmd.add_option("--curvature-scale", f.curvatureScale,
                    "shrink features where the mean curvature is high (strength, 0 = off; "
                    "size factor 1 / (1 + S |H| / median |H|))")
@@ -124,8 +127,9 @@ void addSurfaceFlags(CLI::App& cmd, SurfaceFlags& f) {
 
 bool anySurfaceFlag(const SurfaceFlags& f) {
     return !f.mesh.empty() || !f.tileSize.empty() || !f.tiles.empty() || f.noMetricCorrection ||
-           f.noCrossTerm || f.noRepair || !f.mergeDistance.empty() || !f.curvatureScale.empty() ||
-           !f.direction.empty() || !f.view.empty() || !f.resolution.empty() || !f.turntable.empty();
+           f.noCrossTerm || f.noRepair || !f.mergeDistance.empty() || !f.wrap.empty() ||
+           !f.curvatureScale.empty() || !f.direction.empty() || !f.view.empty() ||
+           !f.resolution.empty() || !f.turntable.empty();
 }
 
 void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
@@ -139,11 +143,12 @@ void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
     if (!anySurfaceFlag(f))
         return;
     if (!s.surface.active())
-        throw InputError("the surface flags (--tile-size, --tiles, --no-metric-correction, "
-                         "--no-cross-term, --no-repair, --merge-distance, --curvature-scale, "
-                         "--direction, --view, --resolution, --turntable) "
-                         "need a mesh: "
-                         "give --mesh FILE");
+        throw InputError(
+            "the surface flags (--tile-size, --tiles, --no-metric-correction, "
+            "--no-cross-term, --no-repair, --merge-distance, --wrap, --curvature-scale, "
+            "--direction, --view, --resolution, --turntable) "
+            "need a mesh: "
+            "give --mesh FILE");
     SurfaceSpec& spec = s.surface;
     if (!f.tileSize.empty())
         spec.tileSize =
@@ -158,6 +163,8 @@ void applySurfaceFlags(const SurfaceFlags& f, Session& s) {
         spec.repair = false;
     if (!f.mergeDistance.empty())
         spec.mergeDistance = numberFlag("--merge-distance", f.mergeDistance, 0, kMaxMergeDistance);
+    if (!f.wrap.empty())
+        spec.wrap = *parseWrapMode(f.wrap); // checked by the option
     if (!f.curvatureScale.empty()) {
         spec.scaleStrength =
             numberFlag("--curvature-scale", f.curvatureScale, 0, kMaxSurfaceScaleStrength);

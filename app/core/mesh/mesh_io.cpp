@@ -117,7 +117,25 @@ LoadedMesh loadMesh(const std::string& path, const RepairOptions& repair) {
         throw InputError(path + ": all " + std::to_string(loaded.file.triangles) +
                          " triangles collapse to a line or point once equal vertices are "
                          "merged, nothing to grow a pattern on");
-    loaded.repair = repairMesh(loaded.mesh, repair);
+    // A soup is wrapped whole, as welded: the repair would drop its smallest
+    // fragments as specks. Pieces that touch only at corners are one piece
+    // welded and many once the repair cuts them apart: that is a soup too.
+    const bool automatic = repair.wrap == WrapMode::Automatic && repair.enabled;
+    if (repair.wrap == WrapMode::Always || (automatic && looksLikeSoup(loaded.mesh))) {
+        loaded.mesh = alphaWrap(loaded.mesh, kWrapAlpha, kWrapOffset, &loaded.wrap);
+        loaded.repair = repairMesh(loaded.mesh, repair);
+    } else if (automatic) {
+        TriangleMesh welded = loaded.mesh;
+        loaded.repair = repairMesh(loaded.mesh, repair);
+        if (looksLikeSoup(loaded.mesh)) {
+            const std::size_t pieces = meshPieces(loaded.mesh);
+            loaded.mesh = alphaWrap(welded, kWrapAlpha, kWrapOffset, &loaded.wrap);
+            loaded.wrap.componentsBefore = pieces;
+            loaded.repair = repairMesh(loaded.mesh, repair);
+        }
+    } else {
+        loaded.repair = repairMesh(loaded.mesh, repair);
+    }
     if (loaded.mesh.triangles.empty())
         throw InputError(path + ": no triangle is left once duplicates and collapsed ones are "
                                 "removed, nothing to grow a pattern on");

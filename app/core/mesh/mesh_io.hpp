@@ -9,6 +9,7 @@
 
 #include "core/mesh/mesh_material.hpp"
 #include "core/mesh/mesh_repair.hpp"
+#include "core/mesh/mesh_wrap.hpp"
 #include "core/mesh/triangle_mesh.hpp"
 
 namespace morphogen {
@@ -33,6 +34,7 @@ struct LoadedMesh {
     TriangleMesh mesh;
     MeshFileInfo file;
     WeldStats weld;
+    WrapStats wrap;             // whether the welded mesh was replaced by its alpha wrap
     RepairStats repair;         // what repairMesh changed (nothing with repair off)
     std::size_t reoriented = 0; // triangles turned to agree with their neighbours
 };
@@ -48,7 +50,8 @@ struct LoadedMesh {
 // triangles at all.
 TriangleMesh readMeshFile(const std::string& path, MeshFileInfo* info = nullptr);
 
-// readMeshFile, then weldVertices, repairMesh (mesh_repair.hpp) and
+// readMeshFile, then weldVertices, the alpha wrap where `repair.wrap` asks
+// for it (mesh_wrap.hpp), repairMesh (mesh_repair.hpp) and
 // orientConsistently: what surface tiles are built on. Throws InputError also
 // when every triangle collapses when welded or is removed by the repair.
 LoadedMesh loadMesh(const std::string& path, const RepairOptions& repair = {});

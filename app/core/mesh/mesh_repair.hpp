@@ -10,6 +10,7 @@
 #include <cstddef>
 
 #include "core/mesh/triangle_mesh.hpp"
+#include "core/mesh/wrap_mode.hpp"
 
 namespace morphogen {
 
@@ -27,6 +28,9 @@ constexpr double kSpeckAreaFraction = 1e-4;
 struct RepairOptions {
     bool enabled = true;
     double mergeDistance = kDefaultMergeDistance; // of the box diagonal; 0: no merging
+    // Wrap the welded mesh (mesh_wrap.hpp) before repairing it: always, never,
+    // or when it looks like a soup of pieces (automatic, with the repair on).
+    WrapMode wrap = WrapMode::Automatic;
 };
 
 // What repairMesh found and changed.

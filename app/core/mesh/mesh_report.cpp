@@ -112,6 +112,13 @@ std::string meshReportText(const LoadedMesh& loaded, const MeshReport& r) {
         out += ", " + plural(loaded.reoriented, "triangle", "triangles") +
                " turned to agree with their neighbours";
     out += "\n";
+    const WrapStats& wrap = loaded.wrap;
+    if (wrap.wrapped)
+        out += "wrapped: " + plural(wrap.componentsBefore, "piece", "pieces") +
+               " replaced by their alpha wrap (CGAL), a closed surface of " +
+               plural(wrap.triangles, "triangle", "triangles") +
+               format(" %.3g outside the model, gaps under %.3g closed over\n", wrap.offset,
+                      wrap.alpha);
     const RepairStats& m = loaded.repair;
     if (m.nonManifoldEdges > 0 || m.nonManifoldVertices > 0)
         out += "found: " + plural(m.nonManifoldEdges, "non-manifold edge", "non-manifold edges") +
@@ -187,6 +194,12 @@ nlohmann::json meshReportJson(const LoadedMesh& loaded, const MeshReport& r) {
           {"unused_vertices_dropped", loaded.weld.unreferencedDropped},
           {"collapsed_triangles_removed", loaded.weld.collapsedRemoved},
           {"triangles_reoriented", loaded.reoriented}}},
+        {"wrap",
+         {{"wrapped", loaded.wrap.wrapped},
+          {"pieces_before", loaded.wrap.componentsBefore},
+          {"triangles", loaded.wrap.triangles},
+          {"alpha", loaded.wrap.alpha},
+          {"offset", loaded.wrap.offset}}},
         {"repair",
          {{"non_manifold_edges_found", loaded.repair.nonManifoldEdges},
           {"non_manifold_vertices_found", loaded.repair.nonManifoldVertices},

@@ -125,7 +125,7 @@ std::string surfaceScaleByNames() {
 SurfaceSpec surfaceSpecFromJson(const FieldReader& top, const nlohmann::json& block) {
     FieldReader reader(block, top.source(), "surface");
     reader.rejectUnknown({"mesh", "tile_size", "tiles", "metric_correction", "cross_term", "scale",
-                          "direction", "view", "repair", "merge_distance"});
+                          "direction", "view", "repair", "merge_distance", "wrap"});
     SurfaceSpec spec;
     spec.mesh = reader.string("mesh", "");
     if (spec.mesh.empty())
@@ -147,6 +147,7 @@ SurfaceSpec surfaceSpecFromJson(const FieldReader& top, const nlohmann::json& bl
     spec.crossTerm = reader.boolean("cross_term", spec.crossTerm);
     spec.repair = reader.boolean("repair", spec.repair);
     spec.mergeDistance = reader.number("merge_distance", spec.mergeDistance, 0, kMaxMergeDistance);
+    spec.wrap = reader.choice("wrap", spec.wrap, parseWrapMode, wrapModeNames());
     if (const nlohmann::json* scale = reader.find("scale")) {
         FieldReader s(*scale, top.source(), "surface.scale");
         s.rejectUnknown({"by", "strength"});
@@ -172,6 +173,8 @@ nlohmann::json surfaceSpecToJson(const SurfaceSpec& spec) {
         j["repair"] = false;
     if (spec.mergeDistance != SurfaceSpec().mergeDistance)
         j["merge_distance"] = spec.mergeDistance;
+    if (spec.wrap != WrapMode::Automatic)
+        j["wrap"] = toString(spec.wrap);
     if (spec.scaleBy != SurfaceScaleBy::None)
         j["scale"] = {{"by", toString(spec.scaleBy)}, {"strength", spec.scaleStrength}};
     // The default stays unwritten: sessions written before it read back the same.

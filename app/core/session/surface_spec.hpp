@@ -7,6 +7,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "core/mesh/wrap_mode.hpp"
+
 namespace morphogen {
 
 class FieldReader;
@@ -74,6 +76,9 @@ struct SurfaceSpec {
     // triangles and specks, cut fins and bowtie vertices apart.
     bool repair = true;
     double mergeDistance = 1e-5; // kDefaultMergeDistance
+    // "auto": a mesh that is a soup of pieces is replaced by its alpha wrap
+    // (mesh_wrap.hpp); "always", "never".
+    WrapMode wrap = WrapMode::Automatic;
     SurfaceScaleBy scaleBy = SurfaceScaleBy::None;
     double scaleStrength = 1.0;
     // Anisotropic diffusion only (a "diffusion" of type anisotropic).

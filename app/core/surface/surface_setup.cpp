@@ -39,6 +39,7 @@ LoadedMesh loadSurfaceMesh(const SurfaceSpec& spec, const std::string& baseDir) 
     RepairOptions repair;
     repair.enabled = spec.repair;
     repair.mergeDistance = spec.mergeDistance;
+    repair.wrap = spec.wrap;
     return loadMesh(path.string(), repair);
 }
 
