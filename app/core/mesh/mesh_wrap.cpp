@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -21,23 +20,9 @@ constexpr std::array<const char*, 3> kNames = {"auto", "always", "never"};
 
 // Triangles per connected piece (joined through shared vertices).
 std::vector<std::size_t> pieceSizes(const TriangleMesh& mesh) {
-    std::vector<std::uint32_t> parent(mesh.positions.size());
-    std::iota(parent.begin(), parent.end(), 0u);
-    const auto find = [&](std::uint32_t v) {
-        while (parent[v] != v)
-            v = parent[v] = parent[parent[v]];
-        return v;
-    };
-    for (const auto& t : mesh.triangles)
-        for (int k = 1; k < 3; ++k)
-            parent[find(t[std::size_t(k)])] = find(t[0]);
-    std::vector<std::size_t> count(mesh.positions.size(), 0);
-    for (const auto& t : mesh.triangles)
-        ++count[find(t[0])];
     std::vector<std::size_t> sizes;
-    for (const std::size_t c : count)
-        if (c > 0)
-            sizes.push_back(c);
+    for (const std::vector<std::uint32_t>& piece : componentTriangles(mesh))
+        sizes.push_back(piece.size());
     return sizes;
 }
 
