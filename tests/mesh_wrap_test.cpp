@@ -13,6 +13,7 @@
 #include "core/base/errors.hpp"
 #include "core/mesh/mesh_check.hpp"
 #include "core/mesh/mesh_io.hpp"
+#include "core/mesh/mesh_report.hpp"
 #include "core/mesh/mesh_samples.hpp"
 #include "core/mesh/mesh_wrap.hpp"
 #include "core/session/session.hpp"
@@ -68,7 +69,8 @@ TEST(MeshWrap, ASoupIsWrappedIntoOneClosedSurfaceNearTheModel) {
     EXPECT_TRUE(looksLikeSoup(soup));
     const LoadedMesh loaded = loadMesh(written(soup, "soup"));
     ASSERT_TRUE(loaded.wrap.wrapped);
-    EXPECT_GT(loaded.wrap.componentsBefore, soup.triangles.size() * 9 / 10); // less the poles' slivers
+    EXPECT_GT(loaded.wrap.componentsBefore,
+              soup.triangles.size() * 9 / 10); // less the poles' slivers
     const MeshReport report = checkMesh(loaded.mesh);
     ASSERT_EQ(report.components.size(), 1u);
     EXPECT_EQ(report.boundaryEdges, 0u);
@@ -150,4 +152,25 @@ TEST(MeshWrap, TheModeIsASessionFieldAndAFlagValue) {
         EXPECT_NE(what.find("wrap"), std::string::npos) << what;
         EXPECT_NE(what.find("always"), std::string::npos) << what;
     }
+}
+
+// A soup the wrap cannot be made of (coordinates whose extent overflows):
+// the pieces are kept, and the report says why, instead of an exception.
+TEST(MeshWrap, AWrapThatCannotBeMadeKeepsThePiecesAndSaysWhy) {
+    TriangleMesh huge;
+    for (int i = 0; i < 40; ++i) {
+        const auto b = std::uint32_t(huge.positions.size());
+        const float x = float((i % 2 ? 3e38 : -3e38) * (i + 1) / 40.0);
+        huge.positions.push_back({x, 0, 0});
+        huge.positions.push_back({x, 1e37f, 0});
+        huge.positions.push_back({x, 0, 1e37f});
+        huge.triangles.push_back({b, b + 1, b + 2});
+    }
+    ASSERT_TRUE(looksLikeSoup(huge));
+    const LoadedMesh loaded = loadMesh(written(huge, "huge"));
+    EXPECT_FALSE(loaded.wrap.wrapped);
+    EXPECT_FALSE(loaded.wrap.failed.empty());
+    EXPECT_EQ(loaded.mesh.triangles.size(), 40u);
+    const std::string text = meshReportText(loaded, checkMesh(loaded.mesh));
+    EXPECT_NE(text.find("wrap: not made"), std::string::npos) << text;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -121,17 +122,30 @@ LoadedMesh loadMesh(const std::string& path, const RepairOptions& repair) {
     // fragments as specks. Pieces that touch only at corners are one piece
     // welded and many once the repair cuts them apart: that is a soup too.
     const bool automatic = repair.wrap == WrapMode::Automatic && repair.enabled;
+    // The wrap replaces `mesh` and is repaired in turn; where CGAL cannot
+    // make one the mesh stays as it was and the report says why.
+    const auto wrap = [&](TriangleMesh& mesh) {
+        try {
+            mesh = alphaWrap(mesh, kWrapAlpha, kWrapOffset, &loaded.wrap);
+            return true;
+        } catch (const std::exception& e) {
+            loaded.wrap.failed = e.what();
+            return false;
+        }
+    };
     if (repair.wrap == WrapMode::Always || (automatic && looksLikeSoup(loaded.mesh))) {
-        loaded.mesh = alphaWrap(loaded.mesh, kWrapAlpha, kWrapOffset, &loaded.wrap);
+        wrap(loaded.mesh);
         loaded.repair = repairMesh(loaded.mesh, repair);
     } else if (automatic) {
         TriangleMesh welded = loaded.mesh;
         loaded.repair = repairMesh(loaded.mesh, repair);
         if (looksLikeSoup(loaded.mesh)) {
             const std::size_t pieces = meshPieces(loaded.mesh);
-            loaded.mesh = alphaWrap(welded, kWrapAlpha, kWrapOffset, &loaded.wrap);
-            loaded.wrap.componentsBefore = pieces;
-            loaded.repair = repairMesh(loaded.mesh, repair);
+            if (wrap(welded)) {
+                loaded.mesh = std::move(welded);
+                loaded.wrap.componentsBefore = pieces;
+                loaded.repair = repairMesh(loaded.mesh, repair);
+            }
         }
     } else {
         loaded.repair = repairMesh(loaded.mesh, repair);

@@ -119,6 +119,8 @@ std::string meshReportText(const LoadedMesh& loaded, const MeshReport& r) {
                plural(wrap.triangles, "triangle", "triangles") +
                format(" %.3g outside the model, gaps under %.3g closed over\n", wrap.offset,
                       wrap.alpha);
+    if (!wrap.failed.empty())
+        out += "wrap: not made (" + wrap.failed + "); the pieces are kept\n";
     const RepairStats& m = loaded.repair;
     if (m.nonManifoldEdges > 0 || m.nonManifoldVertices > 0)
         out += "found: " + plural(m.nonManifoldEdges, "non-manifold edge", "non-manifold edges") +
@@ -199,7 +201,8 @@ nlohmann::json meshReportJson(const LoadedMesh& loaded, const MeshReport& r) {
           {"pieces_before", loaded.wrap.componentsBefore},
           {"triangles", loaded.wrap.triangles},
           {"alpha", loaded.wrap.alpha},
-          {"offset", loaded.wrap.offset}}},
+          {"offset", loaded.wrap.offset},
+          {"failed", loaded.wrap.failed}}},
         {"repair",
          {{"non_manifold_edges_found", loaded.repair.nonManifoldEdges},
           {"non_manifold_vertices_found", loaded.repair.nonManifoldVertices},

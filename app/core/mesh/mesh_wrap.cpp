@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -59,8 +60,8 @@ bool looksLikeSoup(const TriangleMesh& mesh) {
 TriangleMesh alphaWrap(const TriangleMesh& mesh, double alphaFraction, double offsetFraction,
                        WrapStats* stats) {
     const double diagonal = boundsOf(mesh.positions).diagonal();
-    if (!(diagonal > 0))
-        throw std::invalid_argument("alphaWrap: the mesh has no extent");
+    if (!(diagonal > 0) || !std::isfinite(diagonal))
+        throw std::runtime_error("the mesh's extent is not a finite size");
     std::vector<Point> points;
     points.reserve(mesh.positions.size());
     for (const Eigen::Vector3f& p : mesh.positions)
@@ -72,6 +73,8 @@ TriangleMesh alphaWrap(const TriangleMesh& mesh, double alphaFraction, double of
     const double alpha = alphaFraction * diagonal, offset = offsetFraction * diagonal;
     CGAL::Surface_mesh<Point> wrap;
     CGAL::alpha_wrap_3(points, faces, alpha, offset, wrap);
+    if (wrap.number_of_faces() == 0)
+        throw std::runtime_error("the wrap came out empty");
 
     TriangleMesh out;
     std::vector<std::uint32_t> index(wrap.number_of_vertices() + wrap.number_of_removed_vertices());

@@ -9,6 +9,7 @@
 #include "core/mesh/triangle_mesh.hpp"
 #include "core/mesh/wrap_mode.hpp"
 #include <cstddef>
+#include <string>
 
 namespace morphogen {
 
@@ -30,13 +31,16 @@ std::size_t meshPieces(const TriangleMesh& mesh);
 
 struct WrapStats {
     bool wrapped = false;
+    std::string failed;               // why a wrap asked for could not be made (the mesh then kept)
     std::size_t componentsBefore = 0; // pieces of the repaired mesh
     std::size_t triangles = 0;        // of the wrap
     double alpha = 0, offset = 0;     // model units
 };
 
 // The closed wrap of `mesh` at alpha = alphaFraction and offset =
-// offsetFraction of its bounding box's diagonal, outward-oriented.
+// offsetFraction of its bounding box's diagonal, outward-oriented. Throws
+// std::runtime_error for a mesh without a finite extent or a wrap CGAL
+// could not make (loadMesh then keeps the mesh and says why).
 TriangleMesh alphaWrap(const TriangleMesh& mesh, double alphaFraction = kWrapAlpha,
                        double offsetFraction = kWrapOffset, WrapStats* stats = nullptr);
 
