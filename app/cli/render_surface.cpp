@@ -131,7 +131,6 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
     const std::string& out = paths.out;
     std::vector<std::string> written;
     const Atlas& atlas = *setup.tiles.atlas;
-    const SurfaceColours c = surfaceColours(result.state, result.completed, atlas);
     const SurfaceView& v = result.completed.surface.view;
     // A model with texture coordinates gets the pattern baked into them: its
     // own mesh and layout, ready for its material. Without, the tiled surface
@@ -145,6 +144,13 @@ std::vector<std::string> writeSurfaceOutput(const RunResult& result, const Surfa
             uvs.reset();
         }
     }
+    // The finer atlas texture's colours only where an atlas texture is drawn
+    // (a screenshot, or an export without the model's UVs): a bake into the
+    // UVs samples the atlas texels themselves.
+    SurfaceLook look;
+    if (uvs && (out.empty() || isModelOutput(out)))
+        look.scale = 1;
+    const SurfaceColours c = surfaceColours(result.state, result.completed, atlas, {}, look);
     if (!paths.textureSetDir.empty()) {
         ModelTextureSetOptions options;
         options.size = paths.bakeSize;
@@ -222,7 +228,8 @@ void SurfaceFrames::draw(const std::string& path, const RunResult& sofar, float 
     else if (!m_own)
         m_own = gl::createHeadlessContext(m_contextKind);
     const SurfaceColours c = surfaceColours(sofar.state, sofar.completed, *m_setup.tiles.atlas,
-                                            std::make_pair(low, high));
+                                            std::make_pair(low, high), {}, m_display);
+    m_display = c.displayAtlas;
     const TexturedMesh textured = texturedSurface(m_setup.tiles, c);
     if (m_renderer)
         m_renderer->setTextures(textured);

@@ -6,6 +6,7 @@
 
 #include "core/io/output_files.hpp"
 #include "core/sim/runner.hpp"
+#include "core/surface/display_atlas.hpp"
 #include "core/surface/surface_setup.hpp"
 #include "gl/context.hpp"
 
@@ -69,6 +70,7 @@ private:
     std::optional<gl::ContextKind> m_contextKind;
     std::unique_ptr<gl::Context> m_own;
     std::unique_ptr<gl::SurfaceRenderer> m_renderer;
+    std::shared_ptr<const DisplayAtlas> m_display; // the first frame's, for the rest
 };
 
 } // namespace morphogen::cli

@@ -87,4 +87,36 @@ void writeModel(tinygltf::Model& model, tinygltf::Mesh mesh, tinygltf::Node node
     writeFileAtomically(path, bytes.str());
 }
 
+MeshMaterial keptMaterial(const tinygltf::Material& material) {
+    MeshMaterial kept;
+    kept.name = material.name;
+    const auto& pbr = material.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() == 4)
+        kept.baseColourAlpha = pbr.baseColorFactor[3];
+    kept.metallic = pbr.metallicFactor;
+    kept.roughness = pbr.roughnessFactor;
+    for (std::size_t k = 0; k < 3 && k < material.emissiveFactor.size(); ++k)
+        kept.emissive[k] = material.emissiveFactor[k];
+    if (!material.alphaMode.empty())
+        kept.alphaMode = material.alphaMode;
+    kept.alphaCutoff = material.alphaCutoff;
+    kept.doubleSided = material.doubleSided;
+    return kept;
+}
+
+tinygltf::Material withKept(tinygltf::Material base, const MeshMaterial& kept,
+                            bool keepMetallicRoughness) {
+    base.name = kept.name;
+    base.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, kept.baseColourAlpha};
+    if (keepMetallicRoughness) {
+        base.pbrMetallicRoughness.metallicFactor = kept.metallic;
+        base.pbrMetallicRoughness.roughnessFactor = kept.roughness;
+    }
+    base.emissiveFactor = {kept.emissive[0], kept.emissive[1], kept.emissive[2]};
+    base.alphaMode = kept.alphaMode;
+    base.alphaCutoff = kept.alphaCutoff;
+    base.doubleSided = kept.doubleSided;
+    return base;
+}
+
 } // namespace morphogen::gltf

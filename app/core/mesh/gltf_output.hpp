@@ -9,6 +9,8 @@
 #include <Eigen/Core>
 #include <tiny_gltf.h>
 
+#include "core/mesh/mesh_material.hpp"
+
 namespace morphogen::gltf {
 
 // A glTF 2.0 model with one empty buffer, "morphogen" as its generator.
@@ -26,6 +28,13 @@ int addFloatAttribute(tinygltf::Model& model, tinygltf::Primitive& primitive, co
 // POSITION with the min and max the specification requires.
 int addPositions(tinygltf::Model& model, tinygltf::Primitive& primitive,
                  const std::vector<Eigen::Vector3f>& positions);
+
+// A material as the UV bake keeps it (mesh_material.hpp), and back: the
+// glTF material with the pattern's colour (its factor white, the alpha kept)
+// and the rest as the artist set it, over `base` (the exporter's textures).
+MeshMaterial keptMaterial(const tinygltf::Material& material);
+tinygltf::Material withKept(tinygltf::Material base, const MeshMaterial& kept,
+                            bool keepMetallicRoughness);
 
 // `mesh` placed by `node` (its mesh set to it) in the one scene, encoded as
 // GLB and written to `path` atomically. Throws InputError naming the path.

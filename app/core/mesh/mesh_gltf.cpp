@@ -386,22 +386,8 @@ TriangleMesh readGltf(const std::string& path, bool binary, MeshFileInfo& info, 
         uvs->uvs = std::move(texcoordValues);
         uvs->triangles = mesh.triangles;
         if (!model.materials.empty()) {
-            for (const tinygltf::Material& m : model.materials) {
-                MeshMaterial kept;
-                kept.name = m.name;
-                const auto& pbr = m.pbrMetallicRoughness;
-                if (pbr.baseColorFactor.size() == 4)
-                    kept.baseColourAlpha = pbr.baseColorFactor[3];
-                kept.metallic = pbr.metallicFactor;
-                kept.roughness = pbr.roughnessFactor;
-                for (std::size_t k = 0; k < 3 && k < m.emissiveFactor.size(); ++k)
-                    kept.emissive[k] = m.emissiveFactor[k];
-                if (!m.alphaMode.empty())
-                    kept.alphaMode = m.alphaMode;
-                kept.alphaCutoff = m.alphaCutoff;
-                kept.doubleSided = m.doubleSided;
-                uvs->materials.materials.push_back(kept);
-            }
+            for (const tinygltf::Material& m : model.materials)
+                uvs->materials.materials.push_back(gltf::keptMaterial(m));
             uvs->materials.ofTriangle = std::move(triangleMaterial);
         }
     }

@@ -6,16 +6,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/alpha_wrap_3.h>
+
+#include "core/mesh/cgal_surface_mesh.hpp"
 
 namespace morphogen {
 
 namespace {
-
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
 
 constexpr std::array<const char*, 3> kNames = {"auto", "always", "never"};
 
@@ -41,7 +38,7 @@ std::string toString(WrapMode mode) {
 }
 
 std::string wrapModeNames() {
-    return "auto, always, never";
+    return std::string(kNames[0]) + ", " + kNames[1] + ", " + kNames[2];
 }
 
 std::size_t meshPieces(const TriangleMesh& mesh) {
@@ -62,36 +59,13 @@ TriangleMesh alphaWrap(const TriangleMesh& mesh, double alphaFraction, double of
     const double diagonal = boundsOf(mesh.positions).diagonal();
     if (!(diagonal > 0) || !std::isfinite(diagonal))
         throw std::runtime_error("the mesh's extent is not a finite size");
-    std::vector<Point> points;
-    points.reserve(mesh.positions.size());
-    for (const Eigen::Vector3f& p : mesh.positions)
-        points.emplace_back(p.x(), p.y(), p.z());
-    std::vector<std::array<std::size_t, 3>> faces;
-    faces.reserve(mesh.triangles.size());
-    for (const auto& t : mesh.triangles)
-        faces.push_back({t[0], t[1], t[2]});
+    const cgal::Soup soup = cgal::soupOf(mesh);
     const double alpha = alphaFraction * diagonal, offset = offsetFraction * diagonal;
-    CGAL::Surface_mesh<Point> wrap;
-    CGAL::alpha_wrap_3(points, faces, alpha, offset, wrap);
+    cgal::SurfaceMesh wrap;
+    CGAL::alpha_wrap_3(soup.points, soup.faces, alpha, offset, wrap);
     if (wrap.number_of_faces() == 0)
         throw std::runtime_error("the wrap came out empty");
-
-    TriangleMesh out;
-    std::vector<std::uint32_t> index(wrap.number_of_vertices() + wrap.number_of_removed_vertices());
-    for (const auto v : wrap.vertices()) {
-        const Point& p = wrap.point(v);
-        index[std::size_t(v)] = std::uint32_t(out.positions.size());
-        out.positions.emplace_back(float(p.x()), float(p.y()), float(p.z()));
-    }
-    for (const auto f : wrap.faces()) {
-        std::array<std::uint32_t, 3> tri{};
-        int k = 0;
-        for (const auto v : CGAL::vertices_around_face(wrap.halfedge(f), wrap))
-            if (k < 3)
-                tri[std::size_t(k++)] = index[std::size_t(v)];
-        if (k == 3)
-            out.triangles.push_back(tri);
-    }
+    TriangleMesh out = cgal::triangleMeshOf(wrap);
     if (stats) {
         stats->wrapped = true;
         stats->componentsBefore = meshPieces(mesh);

@@ -128,8 +128,9 @@ void DisplayAtlas::interpolate(const Atlas& atlas) {
                     if (weights[k] == 0.0f)
                         continue;
                     const std::array<int, 2> b = base.texel(t, x0 + (k & 1), y0 + (k >> 1));
-                    for (const Source& src :
-                         base.sources(std::size_t(b[1]) * base.width() + b[0])) {
+                    const std::size_t p = std::size_t(b[1]) * base.width() + b[0];
+                    for (std::uint32_t q = base.m_first[p]; q < base.m_first[p + 1]; ++q) {
+                        const Source& src = base.m_sources[q];
                         const auto same =
                             std::find_if(out.begin(), out.end(),
                                          [&](const Source& o) { return o.cell == src.cell; });

@@ -3,21 +3,19 @@
 #include <array>
 #include <vector>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Constrained_placement.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/LindstromTurk_placement.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
+#include "core/mesh/cgal_surface_mesh.hpp"
+
 namespace morphogen {
 
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using CgalMesh = CGAL::Surface_mesh<Point>;
+using CgalMesh = cgal::SurfaceMesh;
 
 // The mesh's border edges, as CGAL's edge_is_constrained_map: a scan's open
 // edges (an ear cut open, a hole) stay where they are, as meshoptimizer's
@@ -39,19 +37,12 @@ TriangleMesh collapseKeepingTopology(const TriangleMesh& mesh, std::size_t targe
     namespace SMS = CGAL::Surface_mesh_simplification;
     if (mesh.triangles.size() <= targetTriangles)
         return mesh;
-    std::vector<Point> points;
-    points.reserve(mesh.positions.size());
-    for (const Eigen::Vector3f& p : mesh.positions)
-        points.emplace_back(p.x(), p.y(), p.z());
-    std::vector<std::array<std::size_t, 3>> faces;
-    faces.reserve(mesh.triangles.size());
-    for (const auto& t : mesh.triangles)
-        faces.push_back({t[0], t[1], t[2]});
-    if (!PMP::is_polygon_soup_a_polygon_mesh(faces))
+    const cgal::Soup soup = cgal::soupOf(mesh);
+    if (!PMP::is_polygon_soup_a_polygon_mesh(soup.faces))
         return mesh;
 
     CgalMesh surface;
-    PMP::polygon_soup_to_polygon_mesh(points, faces, surface);
+    PMP::polygon_soup_to_polygon_mesh(soup.points, soup.faces, surface);
     // The predicate counts edges: a closed triangle mesh has 3/2 as many as triangles.
     SMS::Count_stop_predicate<CgalMesh> stop(targetTriangles * 3 / 2);
     const BorderEdges border{&surface};
@@ -60,24 +51,7 @@ TriangleMesh collapseKeepingTopology(const TriangleMesh& mesh, std::size_t targe
         border);
     SMS::edge_collapse(surface, stop,
                        CGAL::parameters::edge_is_constrained_map(border).get_placement(placement));
-    surface.collect_garbage();
-
-    TriangleMesh out;
-    out.positions.reserve(surface.number_of_vertices());
-    for (const auto v : surface.vertices()) {
-        const Point& p = surface.point(v);
-        out.positions.emplace_back(float(p.x()), float(p.y()), float(p.z()));
-    }
-    out.triangles.reserve(surface.number_of_faces());
-    for (const auto f : surface.faces()) {
-        std::array<std::uint32_t, 3> t{};
-        int k = 0;
-        for (const auto v : CGAL::vertices_around_face(surface.halfedge(f), surface))
-            if (k < 3)
-                t[k++] = std::uint32_t(v.idx());
-        out.triangles.push_back(t);
-    }
-    return out;
+    return cgal::triangleMeshOf(surface);
 }
 
 } // namespace morphogen

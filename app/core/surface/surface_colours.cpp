@@ -63,7 +63,7 @@ void mapAtDisplay(const State& state, int chemical, const ColorMapSpec& spec, fl
 
 SurfaceColours surfaceColours(const State& state, const Session& session, const Atlas& atlas,
                               const std::optional<std::pair<float, float>>& levels,
-                              const SurfaceLook& look) {
+                              const SurfaceLook& look, std::shared_ptr<const DisplayAtlas> reuse) {
     const int chemical = colormapChemical(session.colormap, session.outputModel());
     const float* plane = state.plane(chemical);
     float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
@@ -103,9 +103,13 @@ SurfaceColours surfaceColours(const State& state, const Session& session, const 
     if (water)
         addWater(state, atlas, c);
     const int scale = displayScale(atlas, look);
-    if (scale > 1)
+    if (scale > 1) {
+        if (!reuse || reuse->scale() != scale || reuse->gutter() != look.gutter ||
+            reuse->tileCount() != atlas.tileCount())
+            reuse = std::make_shared<const DisplayAtlas>(atlas, look.gutter, scale);
         mapAtDisplay(state, chemical, colormapOn(session.colormap, session), low, high,
-                     std::make_shared<const DisplayAtlas>(atlas, look.gutter, scale), c);
+                     std::move(reuse), c);
+    }
     return c;
 }
 

@@ -47,9 +47,12 @@ constexpr float kWetDepth = 0.5f;
 constexpr float kWaterRelief = 3.0f;
 
 // `levels`, when given, replace the min-max range of the display chemical (a
-// frame sequence's locked levels).
+// frame sequence's locked levels). `reuse`, a display atlas an earlier call
+// made for the same atlas and look (SurfaceColours::displayAtlas), saves
+// building it again (a frame sequence's every frame).
 SurfaceColours surfaceColours(const State& state, const Session& session, const Atlas& atlas,
                               const std::optional<std::pair<float, float>>& levels = {},
-                              const SurfaceLook& look = {});
+                              const SurfaceLook& look = {},
+                              std::shared_ptr<const DisplayAtlas> reuse = nullptr);
 
 } // namespace morphogen

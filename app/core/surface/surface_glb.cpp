@@ -152,21 +152,9 @@ void writeTexturedGlb(const TexturedMesh& mesh, const std::string& path) {
     for (std::size_t g = 0; g < groups.size(); ++g) {
         if (groups[g].empty())
             continue;
-        tinygltf::Material own = material;
-        if (g > 0) {
-            const MeshMaterial& m = kept.materials[g - 1];
-            own.name = m.name;
-            own.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, m.baseColourAlpha};
-            if (mesh.metallicRoughness.width == 0) {
-                own.pbrMetallicRoughness.metallicFactor = m.metallic;
-                own.pbrMetallicRoughness.roughnessFactor = m.roughness;
-            }
-            own.emissiveFactor = {m.emissive[0], m.emissive[1], m.emissive[2]};
-            own.alphaMode = m.alphaMode;
-            own.alphaCutoff = m.alphaCutoff;
-            own.doubleSided = m.doubleSided;
-        }
-        model.materials.push_back(own);
+        model.materials.push_back(g == 0 ? material
+                                         : gltf::withKept(material, kept.materials[g - 1],
+                                                          mesh.metallicRoughness.width == 0));
         tinygltf::Primitive part = prim;
         part.material = int(model.materials.size() - 1);
         part.indices = gltf::addAccessor(
@@ -241,18 +229,8 @@ TexturedMesh readTexturedGlb(const std::string& path) {
             throw InputError(path + ": a primitive has no material");
         if (prims.size() > 1) {
             // Several materials: each primitive's, as writeTexturedGlb keeps them.
-            const tinygltf::Material& m = model.materials[std::size_t(part.material)];
-            MeshMaterial kept;
-            kept.name = m.name;
-            kept.baseColourAlpha = m.pbrMetallicRoughness.baseColorFactor.at(3);
-            kept.metallic = m.pbrMetallicRoughness.metallicFactor;
-            kept.roughness = m.pbrMetallicRoughness.roughnessFactor;
-            for (std::size_t k = 0; k < 3 && k < m.emissiveFactor.size(); ++k)
-                kept.emissive[k] = m.emissiveFactor[k];
-            kept.alphaMode = m.alphaMode;
-            kept.alphaCutoff = m.alphaCutoff;
-            kept.doubleSided = m.doubleSided;
-            mesh.materials.materials.push_back(kept);
+            mesh.materials.materials.push_back(
+                gltf::keptMaterial(model.materials[std::size_t(part.material)]));
             mesh.materials.ofTriangle.resize(mesh.triangles.size(),
                                              std::int32_t(mesh.materials.materials.size() - 1));
         }
