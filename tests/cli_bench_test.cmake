@@ -68,8 +68,9 @@ if(NOT cpu_rows EQUAL 1)
 endif()
 
 # The surface rows alone (issue 11): mesh to atlas for the 81,920-triangle blob
-# with its phase times, the holes atlas's throughput against a grid and a
-# session step's cost on three models, each with finite positive figures.
+# with its phase times, the holes atlas's throughput against a grid and its
+# kernels against a probe, and a session step's cost on three models, each
+# with finite positive figures.
 execute_process(COMMAND ${MORPHOGEN} bench --seconds 0.01 --no-throughput --no-domains
   --no-convergence --no-memory --no-resolution --no-designer --json surface.json
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err WORKING_DIRECTORY "${WORK}")
@@ -95,6 +96,19 @@ foreach(i RANGE ${last})
   string(JSON substeps GET "${report}" surface throughput ${i} substeps)
   if(NOT fraction GREATER 0 OR substeps LESS 1)
     message(SEND_ERROR "surface throughput row ${i}: fraction ${fraction}, substeps ${substeps}")
+  endif()
+endforeach()
+# The CPU atlas kernels against a probe of their memory traffic: the explicit
+# step and a relaxation pass at both tile sizes (the fraction is a
+# measurement, checked only to be a finite positive figure).
+string(JSON rows LENGTH "${report}" surface kernel_probe)
+if(NOT rows EQUAL 4)
+  message(SEND_ERROR "want kernel probe rows for two kernels at two tile sizes, got ${rows}")
+endif()
+foreach(i RANGE 3)
+  string(JSON fraction GET "${report}" surface kernel_probe ${i} fraction_of_probe)
+  if(NOT fraction GREATER 0)
+    message(SEND_ERROR "surface kernel_probe row ${i}: fraction ${fraction}")
   endif()
 endforeach()
 # A session step's cost on three models, both integrators and a flat grid,

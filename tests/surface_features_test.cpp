@@ -2,6 +2,7 @@
 // across a tile edge is one feature), areas and centroids weighted by the
 // texels' areas, and the statistics the surface reports use.
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -76,6 +77,48 @@ TEST(SurfaceFeatures, ASpotAcrossTileEdgesIsOneFeatureWithItsArea) {
     EXPECT_NEAR(c.centroid.y(), c.centroid.z(), 1e-6);
     EXPECT_GT(c.centroid.x(), 0.85);
     EXPECT_NEAR((f.centroid - face.cast<double>()).norm(), 0.0, 1e-6);
+}
+
+// A filled ellipse with semi-axes a and b has covariance a^2/4 and b^2/4
+// along them, so its elongation is a / b; on a face of 32 x 32 texels the
+// discretisation moves it by a few percent. The disc is round; the spot over
+// the cube's edge bends, which must not count as elongation.
+TEST(SurfaceFeatures, ElongationIsTheRatioOfTheSpotsAxes) {
+    const Atlas atlas = Atlas::cube(32);
+    const auto position = cubePositions(atlas);
+    std::vector<float> area(atlas.cellCount(), 0.0f);
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+        if (atlas.used(i))
+            area[i] = 1.0f / 1024.0f;
+    std::vector<float> plane(atlas.cellCount(), 0.0f);
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i) {
+        if (!atlas.used(i))
+            continue;
+        const Eigen::Vector3f p = position[i];
+        // On the face x = 0: an ellipse 0.3 by 0.1 along z; on the face
+        // x = 1: a disc of radius 0.15 round a point 0.1 from the edge with
+        // y = 1, so that it folds over onto the face y = 1.
+        const bool ellipse =
+            p.x() == 0.0f &&
+            std::pow((p.z() - 0.5f) / 0.3f, 2.0f) + std::pow((p.y() - 0.5f) / 0.1f, 2.0f) < 1.0f;
+        const Eigen::Vector3f centre(1.0f, 0.9f, 0.5f);
+        const bool folded = std::abs(p.x() - 1.0f) < 1e-6f || std::abs(p.y() - 1.0f) < 1e-6f;
+        const Eigen::Vector3f flat(1.0f, p.y() + (1.0f - p.x()), p.z()); // unfolded onto x = 1
+        const bool disc = folded && (flat - centre).norm() < 0.15f;
+        plane[i] = ellipse || disc ? 1.0f : 0.0f;
+    }
+    const auto features = findSurfaceFeatures(atlas, plane.data(), area, position);
+    ASSERT_EQ(features.size(), 2u);
+    const bool ellipseFirst = features[0].centroid.x() < 0.5;
+    const SurfaceFeature& e = features[ellipseFirst ? 0 : 1];
+    const SurfaceFeature& d = features[ellipseFirst ? 1 : 0];
+    EXPECT_NEAR(e.elongation, 3.0, 0.15);
+    EXPECT_GT(std::abs(e.majorAxis.z()), 0.99);
+    // Folded over the edge, the disc's extent in 3D is not a flat disc's: a
+    // spot a fifth as wide as the face keeps its elongation below 1.2.
+    EXPECT_LT(d.elongation, 1.2);
+    EXPECT_NEAR(medianElongation(features, 1), std::max(e.elongation, d.elongation), 1e-12);
+    EXPECT_EQ(medianElongation(features, 100000), 0.0);
 }
 
 TEST(SurfaceFeatures, AreaStatisticsAndCorrelation) {

@@ -1,23 +1,29 @@
 #include "cli/bench_surface.hpp"
 #include "cli/bench_timing.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <tuple>
 #include <unistd.h>
 #include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "core/domain/atlas_diagonals.hpp"
 #include "core/domain/atlas_weights.hpp"
 #include "core/mesh/mesh_io.hpp"
 #include "core/mesh/mesh_samples.hpp"
 #include "core/session/session.hpp"
+#include "core/sim/cpu_kernels.hpp"
+#include "core/sim/cpu_padded_atlas.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/initial_state.hpp"
 #include "core/sim/segments.hpp"
@@ -110,17 +116,36 @@ double sessionStepsPerSecond(const Session& s, const Make& make, bool gpu, doubl
 // on a tile border and go through the connectivity map) and at 16x16. Steps
 // are engine steps: a session step on the atlas takes `substeps` of them
 // (the weights' stability bound), shown beside the fraction.
+// The holes model's sample preset on its atlas, set up once for the rows
+// that time it.
+struct HolesAtlas {
+    Session session;
+    SurfaceSetup setup;
+};
+
+// At the automatic tile size and at 16x16, with the explicit kernel whatever
+// setUpSurface would choose.
+std::vector<HolesAtlas> holesAtlases() {
+    std::vector<HolesAtlas> out;
+    for (const int tileSize : {0, 16}) {
+        HolesAtlas h;
+        h.session = loadPreset("surface_curvature_spots_holes");
+        h.session.surface.tileSize = tileSize;
+        h.session.integratorGiven = true;
+        h.setup = setUpSurface(h.session);
+        out.push_back(std::move(h));
+    }
+    return out;
+}
+
 nlohmann::json throughputRows(const std::vector<std::pair<std::string, Make>>& backends,
-                              double seconds) {
+                              const std::vector<HolesAtlas>& holes, double seconds) {
     nlohmann::json rows = nlohmann::json::array();
     std::printf("\n%-22s %-8s %9s %9s %14s %14s %9s %9s\n", "surface atlas", "backend", "texels",
                 "texture", "atlas texel/s", "grid cell/s", "fraction", "substeps");
-    for (const int tileSize : {0, 16}) {
-        Session onAtlas = loadPreset("surface_curvature_spots_holes");
-        onAtlas.surface.tileSize = tileSize;
-        // The explicit kernel's throughput, whatever setUpSurface would choose.
-        onAtlas.integratorGiven = true;
-        const SurfaceSetup setup = setUpSurface(onAtlas);
+    for (const HolesAtlas& h : holes) {
+        const Session& onAtlas = h.session;
+        const SurfaceSetup& setup = h.setup;
         const Atlas& atlas = *setup.tiles.atlas;
         const int substeps = weightedSubsteps(*setup.weights);
         std::size_t used = 0;
@@ -154,6 +179,137 @@ nlohmann::json throughputRows(const std::vector<std::pair<std::string, Make>>& b
                             {"fraction_of_grid", a / g},
                             {"substeps", substeps}});
         }
+    }
+    return rows;
+}
+
+// The probes' vector clones, as the engine's kernels (cpu_kernels.cpp).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define BENCH_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define BENCH_VECTOR_CLONES
+#endif
+
+// The least a weighted atlas step can do: the same planes read at the same
+// texels (each chemical's row and the rows above and below it, every weight
+// plane, and the right-hand side for a relaxation pass) and the same planes
+// written, with one add per value read instead of the stencil, the reaction,
+// the division and the clamps. Run through the same PaddedAtlasStep (its
+// halo fills included), so that the ratio of the two is the kernels' own cost
+// over the memory traffic they cannot avoid.
+template <int N, bool Cross, bool Rhs>
+BENCH_VECTOR_CLONES void probeRows(const StepConstants& k, const State& in, const State* rhs,
+                                   State& out, int y0, int y1, int x0, int x1) {
+    const int w = in.width();
+    const std::size_t cells = in.cellCount();
+    for (int y = y0; y < y1; ++y) {
+        const std::size_t row = std::size_t(y) * std::size_t(w);
+        const float* weight[8] = {};
+        for (int p = 0; p < (Cross ? 8 : 4); ++p)
+            weight[p] = (p < 4 ? k.weightPlanes->data() + std::size_t(p) * cells
+                               : k.diagonalPlanes->data() + std::size_t(p - 4) * cells) +
+                        row;
+        const float* mid[N];
+        const float* b[N];
+        float* next[N];
+        for (int c = 0; c < N; ++c) {
+            mid[c] = in.plane(c) + row;
+            b[c] = Rhs ? rhs->plane(c) + row : mid[c];
+            next[c] = out.plane(c) + row;
+        }
+#pragma omp simd
+        for (int x = x0; x < x1; ++x) {
+            float sum = (weight[0][x] + weight[1][x]) + (weight[2][x] + weight[3][x]);
+            if constexpr (Cross)
+                sum += (weight[4][x] + weight[5][x]) + (weight[6][x] + weight[7][x]);
+#pragma GCC unroll 4
+            for (int c = 0; c < N; ++c) {
+                const float v = (mid[c][x - w] + mid[c][x + w]) + mid[c][x];
+                next[c][x] = 0.25f * (Rhs ? v + b[c][x] : v) + sum;
+            }
+        }
+    }
+}
+
+// The probe for `k`'s chemicals and weight planes (explicit: Rhs false).
+template <bool Rhs> auto probeFor(const StepConstants& k) {
+    using Kernel =
+        void (*)(const StepConstants&, const State&, const State*, State&, int, int, int, int);
+    constexpr Kernel plain[] = {&probeRows<1, false, Rhs>, &probeRows<2, false, Rhs>,
+                                &probeRows<3, false, Rhs>, &probeRows<4, false, Rhs>};
+    constexpr Kernel cross[] = {&probeRows<1, true, Rhs>, &probeRows<2, true, Rhs>,
+                                &probeRows<3, true, Rhs>, &probeRows<4, true, Rhs>};
+    if (k.chemicals < 1 || k.chemicals > 4)
+        throw std::logic_error("bench: the kernel probe takes 1 to 4 chemicals");
+    return (k.crossWeighted() ? cross : plain)[k.chemicals - 1];
+}
+
+void probeStep(const StepConstants& k, const State& in, State& out, int y0, int y1, int x0,
+               int x1) {
+    probeFor<false>(k)(k, in, nullptr, out, y0, y1, x0, x1);
+}
+
+void probeRelax(const StepConstants& k, const State& in, const State& rhs, State& out, int y0,
+                int y1, int x0, int x1) {
+    probeFor<true>(k)(k, in, &rhs, out, y0, y1, x0, x1);
+}
+
+// The CPU's explicit step and semi-implicit relaxation pass on the holes
+// model's atlas (as throughputRows; metric weights with the cross term: eight
+// weight planes), each against its probe, all four through the same
+// PaddedAtlasStep with the simulator's threading rule.
+nlohmann::json kernelProbeRows(const std::vector<HolesAtlas>& holes, double seconds) {
+    nlohmann::json rows = nlohmann::json::array();
+    std::printf("\n%-22s %-14s %14s %14s %9s\n", "atlas kernel (cpu)", "kernel", "texel/s",
+                "probe texel/s", "fraction");
+    for (const HolesAtlas& h : holes) {
+        const Session& s = h.session;
+        const Atlas& atlas = *h.setup.tiles.atlas;
+        std::size_t used = 0;
+        for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+            used += atlas.used(i) ? 1 : 0;
+        const StepConstants k = StepConstants::fromSession(s);
+        const std::vector<std::array<std::uint32_t, 8>> diagonals =
+            k.crossWeighted() ? atlasDiagonals(atlas) : std::vector<std::array<std::uint32_t, 8>>{};
+        const ReactionModel& model = s.reactionModel();
+        const StepTileKernel step = fusedWeightedStep(model, k);
+        const RelaxTileKernel relax = weightedRelaxation(k);
+        if (step == nullptr || relax == nullptr)
+            throw std::logic_error("bench: the holes preset has no fused atlas kernel");
+        State state = initialState(s);
+        const State rhs = state;
+        const bool threaded = state.cellCount() >= 65536; // CpuSimulator's rule
+        PaddedAtlasStep padded(atlas, diagonals, k);
+        const auto rate = [&](const std::function<void(int)>& run) {
+            return measureStepsPerSecond(
+                       run, [] {}, seconds, 20) *
+                   double(used);
+        };
+        const std::string name = "holes, tiles " + std::to_string(atlas.tileSize()) + "x" +
+                                 std::to_string(atlas.tileSize());
+        std::fprintf(stderr, "bench: kernel probes on %s...\n", name.c_str());
+        State probeState = state; // the probes' values grow each step
+        const double stepRate =
+            rate([&](int n) { padded.run(step, k, state, n, {}, {}, threaded); });
+        const double stepProbe =
+            rate([&](int n) { padded.run(&probeStep, k, probeState, n, {}, {}, threaded); });
+        const double relaxRate =
+            rate([&](int n) { padded.relax(relax, k, state, rhs, n, {}, threaded); });
+        const double relaxProbe =
+            rate([&](int n) { padded.relax(&probeRelax, k, probeState, rhs, n, {}, threaded); });
+        for (const auto& [kernel, a, p] :
+             {std::tuple<const char*, double, double>{"explicit step", stepRate, stepProbe},
+              {"relaxation pass", relaxRate, relaxProbe}}) {
+            std::printf("%-22s %-14s %14.3g %14.3g %9.3f\n", name.c_str(), kernel, a, p, a / p);
+            rows.push_back({{"mesh", "sample:holes"},
+                            {"tile_size", atlas.tileSize()},
+                            {"texels", used},
+                            {"kernel", kernel},
+                            {"texels_per_s", a},
+                            {"probe_texels_per_s", p},
+                            {"fraction_of_probe", a / p}});
+        }
+        std::fflush(stdout);
     }
     return rows;
 }
@@ -239,8 +395,10 @@ nlohmann::json benchSurface(bool gpu, bool cpu, double seconds) {
                         ("morphogen_bench_" + std::to_string(::getpid()) + ".obj"))
                            .string()};
     writeObj(large, file.path);
+    const std::vector<HolesAtlas> holes = holesAtlases();
     return {{"mesh_to_atlas", meshToAtlasRow(large, file.path)},
-            {"throughput", throughputRows(backends, seconds)},
+            {"throughput", throughputRows(backends, holes, seconds)},
+            {"kernel_probe", cpu ? kernelProbeRows(holes, seconds) : nlohmann::json::array()},
             {"session_step", stepCostRows(backends, file.path, seconds)}};
 }
 

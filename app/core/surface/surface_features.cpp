@@ -1,8 +1,11 @@
 #include "core/surface/surface_features.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+
+#include <Eigen/Eigenvalues>
 
 #include "core/domain/atlas.hpp"
 
@@ -44,6 +47,7 @@ std::vector<SurfaceFeature> findSurfaceFeatures(const Atlas& atlas, const float*
             continue;
         SurfaceFeature f;
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
         double scalarSum = 0;
         seen[start] = 1;
         stack.assign(1, start);
@@ -52,7 +56,9 @@ std::vector<SurfaceFeature> findSurfaceFeatures(const Atlas& atlas, const float*
             stack.pop_back();
             ++f.texels;
             f.area += area[i];
-            sum += double(area[i]) * position[i].cast<double>();
+            const Eigen::Vector3d p = position[i].cast<double>();
+            sum += double(area[i]) * p;
+            second += double(area[i]) * p * p.transpose();
             if (!scalar.empty())
                 scalarSum += double(area[i]) * scalar[i];
             for (const std::uint32_t j : neighbours[i])
@@ -65,6 +71,14 @@ std::vector<SurfaceFeature> findSurfaceFeatures(const Atlas& atlas, const float*
             continue;
         f.centroid = sum / f.area;
         f.meanValue = scalarSum / f.area;
+        // The smallest eigenvalue is the spread along the normal (the
+        // surface's bend under the feature); the two others span its extent.
+        const Eigen::Matrix3d covariance = second / f.area - f.centroid * f.centroid.transpose();
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
+        const double major = eigen.eigenvalues()[2], minor = eigen.eigenvalues()[1];
+        if (minor > 0)
+            f.elongation = std::sqrt(major / minor);
+        f.majorAxis = eigen.eigenvectors().col(2);
         features.push_back(f);
     }
     return features;
@@ -86,6 +100,18 @@ FeatureAreaStats featureAreaStats(const std::vector<SurfaceFeature>& features) {
     variance /= double(features.size() - 1);
     s.coefficientOfVariation = std::sqrt(variance) / s.meanArea;
     return s;
+}
+
+double medianElongation(const std::vector<SurfaceFeature>& features, std::size_t minTexels) {
+    std::vector<double> e;
+    for (const SurfaceFeature& f : features)
+        if (f.texels >= minTexels)
+            e.push_back(f.elongation);
+    if (e.empty())
+        return 0;
+    const auto middle = e.begin() + std::ptrdiff_t(e.size() / 2);
+    std::nth_element(e.begin(), middle, e.end());
+    return *middle;
 }
 
 double correlation(const std::vector<double>& a, const std::vector<double>& b) {

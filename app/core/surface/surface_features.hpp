@@ -19,6 +19,11 @@ struct SurfaceFeature {
     double area = 0;            // sum of the texels' areas (world units^2)
     Eigen::Vector3d centroid{}; // area-weighted mean texel position
     double meanValue = 0;       // area-weighted mean of a per-texel scalar (e.g. curvature)
+    // The shape: the square root of the ratio of the two largest eigenvalues of
+    // the texel positions' area-weighted covariance (1 for a round spot, about
+    // 2 for one twice as long as wide), and the unit direction it is longest in.
+    double elongation = 1;
+    Eigen::Vector3d majorAxis{1, 0, 0};
 };
 
 // Features of `plane` (one value per atlas cell) on `atlas`. `area` and
@@ -39,6 +44,11 @@ struct FeatureAreaStats {
     double coefficientOfVariation = 0;
 };
 FeatureAreaStats featureAreaStats(const std::vector<SurfaceFeature>& features);
+
+// The median elongation of the features with at least `minTexels` texels (a
+// spot of a handful of texels has the shape of its texels, not its own); 0
+// when there are none.
+double medianElongation(const std::vector<SurfaceFeature>& features, std::size_t minTexels);
 
 // Pearson correlation of two equally long series (0 when either is constant
 // or they have fewer than three entries).
