@@ -233,6 +233,9 @@ void GpuSimulator::buildPrograms() {
         for (int t = 0; t < m_pingPong.count(); ++t)
             glUniform1i(m_program.uniform(("uRhs" + std::to_string(t)).c_str()), kRhsUnits[t]);
         setChemicalVec4s(m_program.uniform("uOmega"), m_k.omega, m_pingPong.count());
+        std::array<float, kMaxChemicals> all;
+        all.fill(1.0f);
+        setChemicalVec4s(m_program.uniform("uRelaxing"), all, m_pingPong.count());
         m_rhsProgram = buildProgram("RHS_PASS");
     }
 }
@@ -497,13 +500,41 @@ void GpuSimulator::run(int steps) {
             }
             glDisable(GL_SCISSOR_TEST);
             glViewport(0, 0, m_session.width, m_session.height);
-            m_pingPong.runRects(m_program, m_k.relaxationPasses, m_activeRects);
         } else {
             glDrawArrays(GL_TRIANGLES, 0, 3);
-            m_pingPong.run(m_program, m_k.relaxationPasses);
         }
+        relax(local);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void GpuSimulator::relax(bool local) {
+    // Each chemical stops after its own passes (chemicalRelaxationPasses, as
+    // the CPU's): the passes run in groups with one set of relaxing chemicals.
+    std::array<int, kMaxChemicals> own{};
+    for (int c = 0; c < m_k.chemicals; ++c)
+        own[std::size_t(c)] = chemicalRelaxationPasses(m_k, c);
+    int done = 0;
+    while (done < m_k.relaxationPasses) {
+        std::array<float, kMaxChemicals> relaxing{};
+        int until = m_k.relaxationPasses;
+        bool any = false;
+        for (int c = 0; c < m_k.chemicals; ++c)
+            if (own[std::size_t(c)] > done) {
+                relaxing[std::size_t(c)] = 1.0f;
+                until = std::min(until, own[std::size_t(c)]);
+                any = true;
+            }
+        if (!any)
+            break; // nothing relaxes: the current textures hold every result
+        m_program.use();
+        setChemicalVec4s(m_program.uniform("uRelaxing"), relaxing, m_pingPong.count());
+        if (local)
+            m_pingPong.runRects(m_program, until - done, m_activeRects);
+        else
+            m_pingPong.run(m_program, until - done);
+        done = until;
+    }
 }
 
 CopyPass::CopyPass(int width, int height, int chemicals)

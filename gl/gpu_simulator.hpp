@@ -115,6 +115,9 @@ private:
     Program buildProgram(const char* pass) const;
     void buildPrograms();
     void bindAuxiliaryTextures() const;
+    // A semi-implicit step's relaxation passes, after its right-hand side
+    // (in the active tiles' rectangles only when `local`).
+    void relax(bool local);
     // gpu_brush.cpp: the brush modes by what they write.
     void brushChemical(const Brush& brush);
     void brushFrozen(const Brush& brush);

@@ -377,6 +377,9 @@ uniform sampler2D uRhs1;
 uniform sampler2D uRhs2;
 #endif
 uniform vec4 uOmega[STATE_TEXTURES];
+// 1 for the chemicals this pass relaxes, 0 for those carried unchanged
+// (their passes done: chemicalRelaxationPasses).
+uniform vec4 uRelaxing[STATE_TEXTURES];
 #ifdef ATLAS_WEIGHTS
 // This texel's links and diagonals summed (the diffusion term's S).
 float weightSum() {
@@ -405,10 +408,11 @@ void main() {
 #define SWEEP(t, state, rhs)                                                                          \
     {                                                                                              \
         vec4 x = texture(state, uv);                                                               \
-        outState[t] = clamp(x + OMEGA(t) * (texture(rhs, uv) - x +                                  \
-                                             uDt * scale[t] *                                      \
-                                                 (STILL(t) ? vec4(0.0) : diffusion(state, t, uv, x))), \
-                            uClampMin[t], uClampMax[t]);                                           \
+        vec4 swept = clamp(x + OMEGA(t) * (texture(rhs, uv) - x +                                   \
+                                          uDt * scale[t] *                                         \
+                                              (STILL(t) ? vec4(0.0) : diffusion(state, t, uv, x))), \
+                           uClampMin[t], uClampMax[t]);                                            \
+        outState[t] = mix(x, swept, greaterThan(uRelaxing[t], vec4(0.5)));                         \
     }
     FOR_EACH_STATE(SWEEP)
 }

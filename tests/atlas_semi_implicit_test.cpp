@@ -129,6 +129,72 @@ TEST(AtlasSemiImplicitCpu, EachPassIsJacobisAndThePassesSolveTheImplicitStep) {
     EXPECT_LT(implicitResidual(*atlas, *weights, start, sim.state(), rate, s.dt), 1e-4);
 }
 
+// Each chemical relaxes only as long as it needs (chemicalRelaxationPasses):
+// Gray-Scott's v diffuses at half u's rate, so fewer passes leave it the
+// residual u has after all of them. With u = 0 (and F = k = 0) the reaction
+// is 0, so v's step is pure diffusion: it must equal the double reference's
+// Jacobi passes at v's own count, and its implicit residual must be no larger
+// than u's own Jacobi residual bound after the full count.
+TEST(AtlasSemiImplicitCpu, ASlowerChemicalStopsAfterItsOwnPasses) {
+    const auto atlas = openAtlas();
+    auto weights = std::make_shared<const AtlasWeights>(test::symmetricNinePointWeights(*atlas, 9));
+    Session s = semiImplicit(test::pureDiffusionSession(atlas), weights, 8);
+    const double du = s.params.at("Du"), dv = s.params.at("Dv");
+    ASSERT_LT(dv, du);
+    s.dt = float(2.0 / (du * maxCoefficientSum(*weights)));
+    const StepConstants k = StepConstants::fromSession(s);
+    const double sigmaU = s.dt * du * maxCoefficientSum(*weights);
+    const double sigmaV = s.dt * dv * maxCoefficientSum(*weights);
+    const double rhoU = sigmaU / (1 + sigmaU), rhoV = sigmaV / (1 + sigmaV);
+    EXPECT_NEAR(k.contraction, rhoU, 1e-12);
+    EXPECT_EQ(chemicalRelaxationPasses(k, 0), 8);
+    const int own = chemicalRelaxationPasses(k, 1);
+    // The fewest passes that reach u's residual factor after eight.
+    EXPECT_LE(std::pow(rhoV, own), std::pow(rhoU, 8) * (1 + 1e-9));
+    EXPECT_GT(std::pow(rhoV, own - 1), std::pow(rhoU, 8));
+    ASSERT_LT(own, 8);
+    ASSERT_GE(own, 1);
+
+    // v random, u = 0: the kernel relaxes both for `own` passes, then u alone
+    // (v carried through the remaining swaps).
+    State start = test::randomUsedState(*atlas, 5);
+    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+        if (atlas->used(i)) {
+            start.plane(1)[i] = start.plane(0)[i];
+            start.plane(0)[i] = 0.0f;
+        }
+    CpuSimulator sim(s);
+    sim.setState(start);
+    sim.run(1);
+    const State x = sim.state();
+    State vStart = start; // v's plane as chemical 0, for the one-chemical reference
+    std::copy_n(start.plane(1), atlas->cellCount(), vStart.plane(0));
+    const std::vector<double> ref = referenceJacobi(*atlas, *weights, vStart, dv, s.dt, own);
+    double worst = 0;
+    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+        if (atlas->used(i)) {
+            worst = std::max(worst, std::abs(double(x.plane(1)[i]) - ref[i]));
+            EXPECT_EQ(x.plane(0)[i], 0.0f);
+        }
+    EXPECT_LT(worst, 1e-5);
+    // And not what more passes give: the count is really v's own.
+    const std::vector<double> more = referenceJacobi(*atlas, *weights, vStart, dv, s.dt, 8);
+    double apart = 0;
+    for (std::uint32_t i = 0; i < atlas->cellCount(); ++i)
+        if (atlas->used(i))
+            apart = std::max(apart, std::abs(ref[i] - more[i]));
+    EXPECT_GT(apart, 1e-4);
+    // Several steps in one run equal one run per step (the carried chemical
+    // comes back to the state each step).
+    CpuSimulator many(s), single(s);
+    many.setState(start);
+    single.setState(start);
+    many.run(3);
+    for (int i = 0; i < 3; ++i)
+        single.run(1);
+    EXPECT_EQ(test::maxAbsDifference(many.state(), single.state()), 0.0f);
+}
+
 // Lo's localized reaction-diffusion: only the active tiles solve, their
 // neighbours held, the rest kept bit for bit.
 TEST(AtlasSemiImplicitCpu, ActiveTilesSolveAloneWithTheirNeighboursHeld) {

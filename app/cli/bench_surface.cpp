@@ -198,8 +198,9 @@ nlohmann::json throughputRows(const std::vector<std::pair<std::string, Make>>& b
 // halo fills included), so that the ratio of the two is the kernels' own cost
 // over the memory traffic they cannot avoid.
 template <int N, bool Cross, bool Rhs>
-BENCH_VECTOR_CLONES void probeRows(const StepConstants& k, const State& in, const State* rhs,
-                                   State& out, int y0, int y1, int x0, int x1) {
+BENCH_VECTOR_CLONES void probeRows(const StepConstants& k, const std::uint8_t* chemicals,
+                                   const State& in, const State* rhs, State& out, int y0, int y1,
+                                   int x0, int x1) {
     const int w = in.width();
     const std::size_t cells = in.cellCount();
     for (int y = y0; y < y1; ++y) {
@@ -212,10 +213,11 @@ BENCH_VECTOR_CLONES void probeRows(const StepConstants& k, const State& in, cons
         const float* mid[N];
         const float* b[N];
         float* next[N];
-        for (int c = 0; c < N; ++c) {
-            mid[c] = in.plane(c) + row;
-            b[c] = Rhs ? rhs->plane(c) + row : mid[c];
-            next[c] = out.plane(c) + row;
+        for (int i = 0; i < N; ++i) {
+            const int c = chemicals ? chemicals[i] : i;
+            mid[i] = in.plane(c) + row;
+            b[i] = Rhs ? rhs->plane(c) + row : mid[i];
+            next[i] = out.plane(c) + row;
         }
 #pragma omp simd
         for (int x = x0; x < x1; ++x) {
@@ -223,35 +225,44 @@ BENCH_VECTOR_CLONES void probeRows(const StepConstants& k, const State& in, cons
             if constexpr (Cross)
                 sum += (weight[4][x] + weight[5][x]) + (weight[6][x] + weight[7][x]);
 #pragma GCC unroll 4
-            for (int c = 0; c < N; ++c) {
-                const float v = (mid[c][x - w] + mid[c][x + w]) + mid[c][x];
-                next[c][x] = 0.25f * (Rhs ? v + b[c][x] : v) + sum;
+            for (int i = 0; i < N; ++i) {
+                const float v = (mid[i][x - w] + mid[i][x + w]) + mid[i][x];
+                next[i][x] = 0.25f * (Rhs ? v + b[i][x] : v) + sum;
             }
         }
     }
 }
 
-// The probe for `k`'s chemicals and weight planes (explicit: Rhs false).
-template <bool Rhs> auto probeFor(const StepConstants& k) {
-    using Kernel =
-        void (*)(const StepConstants&, const State&, const State*, State&, int, int, int, int);
-    constexpr Kernel plain[] = {&probeRows<1, false, Rhs>, &probeRows<2, false, Rhs>,
-                                &probeRows<3, false, Rhs>, &probeRows<4, false, Rhs>};
-    constexpr Kernel cross[] = {&probeRows<1, true, Rhs>, &probeRows<2, true, Rhs>,
-                                &probeRows<3, true, Rhs>, &probeRows<4, true, Rhs>};
-    if (k.chemicals < 1 || k.chemicals > 4)
-        throw std::logic_error("bench: the kernel probe takes 1 to 4 chemicals");
-    return (k.crossWeighted() ? cross : plain)[k.chemicals - 1];
-}
-
+// The explicit probe for `k`'s chemicals and weight planes.
 void probeStep(const StepConstants& k, const State& in, State& out, int y0, int y1, int x0,
                int x1) {
-    probeFor<false>(k)(k, in, nullptr, out, y0, y1, x0, x1);
+    using Kernel = void (*)(const StepConstants&, const std::uint8_t*, const State&, const State*,
+                            State&, int, int, int, int);
+    constexpr Kernel plain[] = {&probeRows<1, false, false>, &probeRows<2, false, false>,
+                                &probeRows<3, false, false>, &probeRows<4, false, false>};
+    constexpr Kernel cross[] = {&probeRows<1, true, false>, &probeRows<2, true, false>,
+                                &probeRows<3, true, false>, &probeRows<4, true, false>};
+    if (k.chemicals < 1 || k.chemicals > 4)
+        throw std::logic_error("bench: the kernel probe takes 1 to 4 chemicals");
+    (k.crossWeighted() ? cross : plain)[k.chemicals - 1](k, nullptr, in, nullptr, out, y0, y1, x0,
+                                                         x1);
 }
 
-void probeRelax(const StepConstants& k, const State& in, const State& rhs, State& out, int y0,
-                int y1, int x0, int x1) {
-    probeFor<true>(k)(k, in, &rhs, out, y0, y1, x0, x1);
+// The relaxation pass's probe for n of the chemicals, as RelaxTileKernels.
+template <int N, bool Cross>
+void probeRelax(const StepConstants& k, const std::uint8_t* chemicals, const State& in,
+                const State& rhs, State& out, int y0, int y1, int x0, int x1) {
+    probeRows<N, Cross, true>(k, chemicals, in, &rhs, out, y0, y1, x0, x1);
+}
+
+RelaxTileKernels probeRelaxation(const StepConstants& k) {
+    if (k.chemicals < 1 || k.chemicals > 4)
+        throw std::logic_error("bench: the kernel probe takes 1 to 4 chemicals");
+    if (k.crossWeighted())
+        return {{nullptr, &probeRelax<1, true>, &probeRelax<2, true>, &probeRelax<3, true>,
+                 &probeRelax<4, true>}};
+    return {{nullptr, &probeRelax<1, false>, &probeRelax<2, false>, &probeRelax<3, false>,
+             &probeRelax<4, false>}};
 }
 
 // The CPU's explicit step and semi-implicit relaxation pass on the holes
@@ -273,8 +284,8 @@ nlohmann::json kernelProbeRows(const std::vector<HolesAtlas>& holes, double seco
             k.crossWeighted() ? atlasDiagonals(atlas) : std::vector<std::array<std::uint32_t, 8>>{};
         const ReactionModel& model = s.reactionModel();
         const StepTileKernel step = fusedWeightedStep(model, k);
-        const RelaxTileKernel relax = weightedRelaxation(k);
-        if (step == nullptr || relax == nullptr)
+        const RelaxTileKernels relax = weightedRelaxation(k);
+        if (step == nullptr || !relax)
             throw std::logic_error("bench: the holes preset has no fused atlas kernel");
         State state = initialState(s);
         const State rhs = state;
@@ -295,8 +306,8 @@ nlohmann::json kernelProbeRows(const std::vector<HolesAtlas>& holes, double seco
             rate([&](int n) { padded.run(&probeStep, k, probeState, n, {}, {}, threaded); });
         const double relaxRate =
             rate([&](int n) { padded.relax(relax, k, state, rhs, n, {}, threaded); });
-        const double relaxProbe =
-            rate([&](int n) { padded.relax(&probeRelax, k, probeState, rhs, n, {}, threaded); });
+        const double relaxProbe = rate(
+            [&](int n) { padded.relax(probeRelaxation(k), k, probeState, rhs, n, {}, threaded); });
         for (const auto& [kernel, a, p] :
              {std::tuple<const char*, double, double>{"explicit step", stepRate, stepProbe},
               {"relaxation pass", relaxRate, relaxProbe}}) {

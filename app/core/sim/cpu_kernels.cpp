@@ -4,6 +4,7 @@
 #include <array>
 #include <cassert>
 #include <cstddef>
+#include <cstdint>
 #include <type_traits>
 #include <utility>
 
@@ -409,19 +410,21 @@ MORPHOGEN_VECTOR_CLONES void stepRowsWeighted(const StepConstants& k, const Stat
 }
 
 // One Jacobi pass on rows [y0, y1), columns [x0, x1), of a weighted atlas
-// padded by halos: x' = clamp((rhs + dt r sides) / (1 + dt r S)). A chemical
-// that does not diffuse (r = 0) gets rhs. Texel-major over N chemicals, as
-// the explicit kernel: the weights are read once per texel.
+// padded by halos: x' = clamp((rhs + dt r sides) / (1 + dt r S)) for the N
+// chemicals listed. A chemical that does not diffuse (r = 0) gets rhs.
+// Texel-major over the N chemicals, as the explicit kernel: the weights are
+// read once per texel.
 template <int N, bool Cross>
-MORPHOGEN_VECTOR_CLONES void relaxRowsWeighted(const StepConstants& k, const State& in,
-                                               const State& rhs, State& out, int y0, int y1, int x0,
-                                               int x1) {
+MORPHOGEN_VECTOR_CLONES void
+relaxRowsWeighted(const StepConstants& k, const std::uint8_t* chemicals, const State& in,
+                  const State& rhs, State& out, int y0, int y1, int x0, int x1) {
     const int w = in.width();
     float a[N], lo[N], hi[N];
-    for (int c = 0; c < N; ++c) {
-        a[c] = k.dt * k.op.rates[std::size_t(c)];
-        lo[c] = k.clampMin[c];
-        hi[c] = k.clampMax[c];
+    for (int i = 0; i < N; ++i) {
+        const int c = chemicals[i];
+        a[i] = k.dt * k.op.rates[std::size_t(c)];
+        lo[i] = k.clampMin[c];
+        hi[i] = k.clampMax[c];
     }
     for (int y = y0; y < y1; ++y) {
         const std::size_t row = std::size_t(y) * std::size_t(w);
@@ -429,29 +432,28 @@ MORPHOGEN_VECTOR_CLONES void relaxRowsWeighted(const StepConstants& k, const Sta
         RowTriple rows[N];
         const float* b[N];
         float* next[N];
-        for (int c = 0; c < N; ++c) {
-            rows[c] = rowTriple(in, c, y);
-            b[c] = rhs.plane(c) + row;
-            next[c] = out.plane(c) + row;
+        for (int i = 0; i < N; ++i) {
+            const int c = chemicals[i];
+            rows[i] = rowTriple(in, c, y);
+            b[i] = rhs.plane(c) + row;
+            next[i] = out.plane(c) + row;
         }
 #pragma omp simd
         for (int x = x0; x < x1; ++x) {
             const TexelWeights t = texelWeights(weights, x);
 #pragma GCC unroll 12
-            for (int c = 0; c < N; ++c) {
+            for (int i = 0; i < N; ++i) {
                 const float sides =
-                    weightedSides<Cross>(t, rows[c].mid, rows[c].down, rows[c].up, x);
-                next[c][x] = std::min(
-                    std::max((b[c][x] + a[c] * sides) / (1.0f + a[c] * t.sum), lo[c]), hi[c]);
+                    weightedSides<Cross>(t, rows[i].mid, rows[i].down, rows[i].up, x);
+                next[i][x] = std::min(
+                    std::max((b[i][x] + a[i] * sides) / (1.0f + a[i] * t.sum), lo[i]), hi[i]);
             }
         }
     }
 }
 
-template <bool Cross, std::size_t... I>
-RelaxTileKernel relaxForCount(int chemicals, std::index_sequence<I...>) {
-    constexpr RelaxTileKernel table[] = {&relaxRowsWeighted<int(I) + 1, Cross>...};
-    return table[chemicals - 1];
+template <bool Cross, std::size_t... I> RelaxTileKernels relaxForCounts(std::index_sequence<I...>) {
+    return {{nullptr, &relaxRowsWeighted<int(I) + 1, Cross>...}};
 }
 
 // rhs = c + dt react(c) on columns [x0, x1) of one row (`row`, `rhs`: each
@@ -697,17 +699,16 @@ RelaxRowsKernel fusedRelaxation(const StepConstants& k) {
     return nullptr;
 }
 
-RelaxTileKernel weightedRelaxation(const StepConstants& k) {
+RelaxTileKernels weightedRelaxation(const StepConstants& k) {
     if (!k.weighted() || k.tensorWeighted() || k.drifting() ||
         k.op.form != DiffusionOperator::Form::Laplacian5)
-        return nullptr;
+        return {};
     for (int m : k.mappedRate)
         if (m >= 0)
-            return nullptr;
+            return {};
     assert(k.chemicals >= 1 && k.chemicals <= kMaxChemicals);
     using Counts = std::make_index_sequence<kMaxChemicals>;
-    return k.crossWeighted() ? relaxForCount<true>(k.chemicals, Counts{})
-                             : relaxForCount<false>(k.chemicals, Counts{});
+    return k.crossWeighted() ? relaxForCounts<true>(Counts{}) : relaxForCounts<false>(Counts{});
 }
 
 } // namespace morphogen

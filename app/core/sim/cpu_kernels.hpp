@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 
 #include "core/models/reaction_model.hpp"
 #include "core/sim/simulator.hpp"
@@ -73,10 +74,18 @@ RelaxRowsKernel fusedRelaxation(const StepConstants& k);
 
 // One Jacobi pass of rows [y0, y1), columns [x0, x1) of a weighted atlas
 // padded by halos (PaddedAtlasStep): x' = clamp((rhs + dt r sides) / (1 + dt r
-// S)), S the texel's weight sum (StepConstants). Null unless the atlas is
-// weighted, isotropic, without drift and with constant rates.
-using RelaxTileKernel = void (*)(const StepConstants& k, const State& x, const State& rhs,
-                                 State& out, int y0, int y1, int x0, int x1);
-RelaxTileKernel weightedRelaxation(const StepConstants& k);
+// S)), S the texel's weight sum (StepConstants), for the kernel's count of
+// chemicals, listed in `chemicals` (the others' planes are not touched).
+using RelaxTileKernel = void (*)(const StepConstants& k, const std::uint8_t* chemicals,
+                                 const State& x, const State& rhs, State& out, int y0, int y1,
+                                 int x0, int x1);
+// The pass for every count of chemicals (byCount[n] relaxes n of them; [0] is
+// null). All null unless the atlas is weighted, isotropic, without drift and
+// with constant rates.
+struct RelaxTileKernels {
+    std::array<RelaxTileKernel, kMaxChemicals + 1> byCount{};
+    explicit operator bool() const { return byCount[1] != nullptr; }
+};
+RelaxTileKernels weightedRelaxation(const StepConstants& k);
 
 } // namespace morphogen

@@ -92,8 +92,12 @@ void PaddedAtlasStep::prepare(const StepConstants& k) {
             m_k.diagonalPlanes =
                 std::make_shared<const std::vector<float>>(padPlanes(*k.diagonalPlanes));
     }
-    // What stepRowsWeighted reads besides the planes; live changes set them.
+    // What the kernels and the passes read besides the planes; live changes
+    // set them.
     m_k.dt = k.dt;
+    m_k.relaxationPasses = k.relaxationPasses;
+    m_k.contraction = k.contraction;
+    m_k.chemicalContraction = k.chemicalContraction;
     m_k.op.rates = k.op.rates;
     m_k.params = k.params;
     m_k.clampMin = k.clampMin;
@@ -121,13 +125,13 @@ void PaddedAtlasStep::store(int tile, State& state) const {
                         state.plane(c) + m_atlas.tileCell(tile, 0, v));
 }
 
-void PaddedAtlasStep::fillHalos(int first, int end,
-                                const std::array<float*, kMaxChemicals>& planes) const {
+void PaddedAtlasStep::fillHalos(int first, int end, const std::array<float*, kMaxChemicals>& planes,
+                                const std::vector<int>* chemicals) const {
     const std::size_t halo = 4 * std::size_t(m_n + 1);
     const std::uint32_t* to = m_haloTo.data() + halo * std::size_t(first);
     const std::uint32_t* from = m_haloFrom.data() + halo * std::size_t(first);
     const std::size_t count = halo * std::size_t(end - first);
-    for (int c : m_diffusing) {
+    for (int c : chemicals ? *chemicals : m_diffusing) {
         float* plane = planes[std::size_t(c)];
         // Halo cells and their sources (tile texels) are disjoint sets.
 #pragma omp simd
@@ -215,21 +219,46 @@ PaddedAtlasStep::paddedFrozen(const std::vector<std::uint32_t>& frozen) const {
     return padded;
 }
 
-void PaddedAtlasStep::relaxPasses(RelaxTileKernel kernel, int passes, bool all,
+void PaddedAtlasStep::relaxPasses(const RelaxTileKernels& kernels, int passes, bool all,
                                   const std::vector<std::uint32_t>& frozen, bool threaded) {
-    for (int pass = 0; pass < passes; ++pass) {
+    int own[kMaxChemicals] = {};
+    for (int c = 0; c < m_k.chemicals; ++c)
+        own[c] = chemicalRelaxationPasses(m_k, c, passes);
+    std::vector<std::uint8_t> relaxed;
+    std::vector<int> halos;
+    int pass = 0;
+    for (; pass < passes; ++pass) {
+        // The chemicals still relaxing, and those of them whose halos this
+        // pass reads (those that diffuse).
+        relaxed.clear();
+        halos.clear();
+        for (int c = 0; c < m_k.chemicals; ++c)
+            if (pass < own[c]) {
+                relaxed.push_back(std::uint8_t(c));
+                if (m_k.op.rates[std::size_t(c)] != 0.0f)
+                    halos.push_back(c);
+            }
+        if (relaxed.empty())
+            break;
+        const RelaxTileKernel kernel = kernels.byCount[relaxed.size()];
         const std::array<float*, kMaxChemicals> planes = inPlanes();
         // As step: a block of tiles fills its own halos, then reads only them.
         forEachBlock(all, threaded, [&](int first, int end, int y0, int y1, int x0, int x1) {
-            fillHalos(first, end, planes);
-            kernel(m_k, m_in, m_rhs, m_out, y0, y1, x0, x1);
+            fillHalos(first, end, planes, &halos);
+            kernel(m_k, relaxed.data(), m_in, m_rhs, m_out, y0, y1, x0, x1);
         });
         keepFrozen(frozen);
         std::swap(m_in, m_out);
     }
+    // A chemical whose passes are done is not written again: each swap moves
+    // it to the other buffer. Those left in m_out after an odd number of
+    // such swaps come back once.
+    for (int c = 0; c < m_k.chemicals; ++c)
+        if ((pass - std::min(own[c], pass)) % 2 == 1)
+            std::copy_n(m_out.plane(c), m_out.cellCount(), m_in.plane(c));
 }
 
-void PaddedAtlasStep::relax(RelaxTileKernel kernel, const StepConstants& k, State& state,
+void PaddedAtlasStep::relax(const RelaxTileKernels& kernels, const StepConstants& k, State& state,
                             const State& rhs, int passes, const std::vector<std::uint32_t>& frozen,
                             bool threaded) {
     prepare(k);
@@ -237,12 +266,12 @@ void PaddedAtlasStep::relax(RelaxTileKernel kernel, const StepConstants& k, Stat
         m_rhs = State(m_in.width(), m_in.height(), m_in.channels());
     load(state, m_in);
     load(rhs, m_rhs);
-    relaxPasses(kernel, passes, true, paddedFrozen(frozen), threaded);
+    relaxPasses(kernels, passes, true, paddedFrozen(frozen), threaded);
     for (int t = 0; t < m_atlas.tileCount(); ++t)
         store(t, state);
 }
 
-void PaddedAtlasStep::runSemiImplicit(StepTileKernel rhsKernel, RelaxTileKernel kernel,
+void PaddedAtlasStep::runSemiImplicit(StepTileKernel rhsKernel, const RelaxTileKernels& kernels,
                                       const StepConstants& k, State& state, int steps, int passes,
                                       const std::vector<int>& active,
                                       const std::vector<std::uint32_t>& frozen, bool threaded) {
@@ -260,7 +289,7 @@ void PaddedAtlasStep::runSemiImplicit(StepTileKernel rhsKernel, RelaxTileKernel 
         forEachBlock(all, threaded, [&](int, int, int y0, int y1, int x0, int x1) {
             rhsKernel(m_k, m_in, m_rhs, y0, y1, x0, x1);
         });
-        relaxPasses(kernel, passes, all, frozenPadded, threaded);
+        relaxPasses(kernels, passes, all, frozenPadded, threaded);
     }
     if (all)
         for (int t = 0; t < m_atlas.tileCount(); ++t)

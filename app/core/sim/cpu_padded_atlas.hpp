@@ -48,24 +48,27 @@ public:
              bool threaded);
 
     // Runs `passes` Jacobi passes of a semi-implicit step (weightedRelaxation's
-    // `kernel` for `k`) on (I - dt A) x = rhs, from x = `state`, which gets
-    // the result; `rhs` is in the atlas layout. The `frozen` cells keep their
-    // values.
-    void relax(RelaxTileKernel kernel, const StepConstants& k, State& state, const State& rhs,
-               int passes, const std::vector<std::uint32_t>& frozen, bool threaded);
+    // `kernels` for `k`) on (I - dt A) x = rhs, from x = `state`, which gets
+    // the result; `rhs` is in the atlas layout. Each chemical stops after its
+    // own passes (chemicalRelaxationPasses), carried unchanged through the
+    // rest. The `frozen` cells keep their values.
+    void relax(const RelaxTileKernels& kernels, const StepConstants& k, State& state,
+               const State& rhs, int passes, const std::vector<std::uint32_t>& frozen,
+               bool threaded);
     // `steps` whole semi-implicit steps in the padded layout: the right-hand
     // side by `rhsKernel` (fusedRhsTilePass's), then relax's passes. The
     // state is copied in and out once, not once per step. With `active`
     // tiles (as run) only they step, a local solve whose neighbours hold.
-    void runSemiImplicit(StepTileKernel rhsKernel, RelaxTileKernel kernel, const StepConstants& k,
-                         State& state, int steps, int passes, const std::vector<int>& active,
-                         const std::vector<std::uint32_t>& frozen, bool threaded);
+    void runSemiImplicit(StepTileKernel rhsKernel, const RelaxTileKernels& kernels,
+                         const StepConstants& k, State& state, int steps, int passes,
+                         const std::vector<int>& active, const std::vector<std::uint32_t>& frozen,
+                         bool threaded);
 
 private:
     std::uint32_t paddedCell(int tile, int u, int v) const;
     std::vector<std::uint32_t> paddedFrozen(const std::vector<std::uint32_t>& frozen) const;
     void keepFrozen(const std::vector<std::uint32_t>& frozen);
-    void relaxPasses(RelaxTileKernel kernel, int passes, bool all,
+    void relaxPasses(const RelaxTileKernels& kernels, int passes, bool all,
                      const std::vector<std::uint32_t>& frozen, bool threaded);
     // Calls block(firstTile, endTile, y0, y1, x0, x1) for every row of tiles
     // (all) or every run of active tiles (m_runs), in parallel.
@@ -78,8 +81,10 @@ private:
     // Copies tiles' texels from the atlas into `to`, or from m_in to the atlas.
     void load(const State& state, State& to) const;
     void store(int tile, State& state) const;
-    // Fills the halos of tiles [first, end).
-    void fillHalos(int first, int end, const std::array<float*, kMaxChemicals>& planes) const;
+    // Fills the halos of tiles [first, end) for the `chemicals` (all that
+    // diffuse when null).
+    void fillHalos(int first, int end, const std::array<float*, kMaxChemicals>& planes,
+                   const std::vector<int>* chemicals = nullptr) const;
     // One step of every tile (all) or of m_runs.
     void step(StepTileKernel kernel, bool all, const std::vector<std::uint32_t>& frozen,
               bool threaded);

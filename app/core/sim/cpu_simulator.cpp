@@ -255,7 +255,7 @@ void CpuSimulator::run(int steps) {
         m_padded->run(m_weightedStep, m_k, m_current, steps, m_activeTiles, m_frozenCells, many);
         return;
     }
-    if (m_padded && m_weightedRelax != nullptr && m_rhsTile != nullptr) {
+    if (m_padded && m_weightedRelax && m_rhsTile != nullptr) {
         m_nextMatches = false;
         const std::size_t n = std::size_t(m_k.domain.atlasMap()->tileSize());
         const bool many =
@@ -773,7 +773,7 @@ void CpuSimulator::stepSemiImplicit() {
         forEachBand(m_current, [&](int y0, int y1) { m_rhsPass(m_k, m_current, m_rhs, y0, y1); });
     else
         rhsGeneric();
-    if (m_weightedRelax != nullptr) {
+    if (m_weightedRelax) {
         m_padded->relax(m_weightedRelax, m_k, m_current, m_rhs, m_k.relaxationPasses, m_frozenCells,
                         threaded(m_current));
         return;
@@ -842,9 +842,9 @@ void CpuSimulator::pickKernels() {
     m_relax = fusedRelaxation(m_k);
     const bool semiImplicit = m_k.integrator == Integrator::SemiImplicit;
     m_weightedStep = semiImplicit ? nullptr : fusedWeightedStep(m_model, m_k);
-    m_weightedRelax = semiImplicit ? weightedRelaxation(m_k) : nullptr;
-    m_rhsTile = m_weightedRelax != nullptr ? fusedRhsTilePass(m_model, m_k) : nullptr;
-    if (m_weightedStep != nullptr || m_weightedRelax != nullptr) {
+    m_weightedRelax = semiImplicit ? weightedRelaxation(m_k) : RelaxTileKernels{};
+    m_rhsTile = m_weightedRelax ? fusedRhsTilePass(m_model, m_k) : nullptr;
+    if (m_weightedStep != nullptr || m_weightedRelax) {
         if (!m_padded)
             m_padded = std::make_unique<PaddedAtlasStep>(*m_k.domain.atlasMap(), m_diagonals, m_k);
     } else {

@@ -82,9 +82,9 @@ private:
     const ReactionModel& m_model;
     // Null where the generic path runs.
     StepRowsKernel m_explicitStep = nullptr;
-    StepTileKernel m_weightedStep = nullptr;   // run through m_padded
-    RelaxTileKernel m_weightedRelax = nullptr; // semi-implicit, through m_padded
-    StepTileKernel m_rhsTile = nullptr;        // its right-hand side there
+    StepTileKernel m_weightedStep = nullptr; // run through m_padded
+    RelaxTileKernels m_weightedRelax;        // semi-implicit, through m_padded
+    StepTileKernel m_rhsTile = nullptr;      // its right-hand side there
     StepRowsKernel m_rhsPass = nullptr;
     RelaxRowsKernel m_relax = nullptr;
     StepConstants m_k;

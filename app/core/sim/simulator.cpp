@@ -161,6 +161,7 @@ void loadAtlasRelaxation(StepConstants& k) {
     const double largest = maxCoefficientSum(*k.domain.atlasWeights());
     for (int c = 0; c < k.chemicals; ++c) {
         const double sigma = double(k.dt) * std::abs(double(k.op.rates[std::size_t(c)])) * largest;
+        k.chemicalContraction[std::size_t(c)] = sigma / (1.0 + sigma);
         k.contraction = std::max(k.contraction, sigma / (1.0 + sigma));
     }
 }
@@ -302,6 +303,24 @@ StepConstants StepConstants::fromSession(const Session& session) {
     return k;
 }
 
+int chemicalRelaxationPasses(const StepConstants& k, int chemical) {
+    return chemicalRelaxationPasses(k, chemical, k.relaxationPasses);
+}
+
+int chemicalRelaxationPasses(const StepConstants& k, int chemical, int passes) {
+    assert(chemical >= 0 && chemical < k.chemicals);
+    if (!k.weighted() || k.integrator != Integrator::SemiImplicit)
+        return passes;
+    const double own = k.chemicalContraction[std::size_t(chemical)], worst = k.contraction;
+    if (own >= worst)
+        return passes;
+    if (own <= 0)
+        return 1;
+    // own^p <= worst^passes; the margin keeps an exact ratio from rounding up.
+    const double p = std::ceil(double(passes) * std::log(worst) / std::log(own) - 1e-9);
+    return std::clamp(int(p), 1, passes);
+}
+
 bool updateLiveConstants(StepConstants& k, const Session& session) {
     // The whole derivation again keeps one source of truth for every value;
     // its cost is host work only (no GL), small next to a frame.
@@ -325,6 +344,7 @@ bool updateLiveConstants(StepConstants& k, const Session& session) {
     k.tensorMixes = fresh.tensorMixes;
     k.omega = fresh.omega;
     k.contraction = fresh.contraction;
+    k.chemicalContraction = fresh.chemicalContraction;
     return true;
 }
 

@@ -41,6 +41,9 @@ struct StepConstants {
     //   x' = clamp(x + omega (rhs - x + dt A x)),  rhs = c + dt f(c).
     std::array<float, kMaxChemicals> omega = {};
     double contraction = 0; // worst chemical's residual factor per sweep
+    // Weighted atlas: each chemical's own (0 where it does not diffuse); see
+    // chemicalRelaxationPasses.
+    std::array<double, kMaxChemicals> chemicalContraction = {};
 
     // Parameters that vary per cell (the session's param_maps), at most 4:
     // their indices in `params` and one plane of values per cell each.
@@ -183,6 +186,17 @@ protected:
     // Takes a session that differs from liveSession() in params or dt only.
     virtual void applyLiveChange(Session next) = 0;
 };
+
+// The relaxation passes chemical c gets in a semi-implicit step on a weighted
+// atlas: as many as leave it the residual the slowest chemical has after all
+// of k.relaxationPasses (contraction_c^p <= contraction^passes), at least one
+// (a chemical that does not diffuse takes its right-hand side in one pass).
+// A chemical that diffuses slowly converges in fewer passes: Meinhardt's
+// activators (rate 0.003) in one where his substrates (0.2) take eight. Elsewhere
+// every chemical gets k.relaxationPasses. `passes` in place of
+// k.relaxationPasses: the same rule for another count.
+int chemicalRelaxationPasses(const StepConstants& k, int chemical);
+int chemicalRelaxationPasses(const StepConstants& k, int chemical, int passes);
 
 // The constants a live change of parameters or dt alters (params, dt, the
 // operator's rates, kernels and map coefficients, the semi-implicit weights),

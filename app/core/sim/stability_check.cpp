@@ -127,12 +127,23 @@ StabilityReport checkSessionStability(Session& session, bool verbose) {
         // The finest segment's operator is the stiffest.
         const StepConstants k = StepConstants::fromSession(segments.back().session);
         if (k.weighted()) {
+            // The chemicals that reach that residual in fewer passes.
+            const ReactionModel& model = segments.back().session.reactionModel();
+            std::string fewer;
+            for (int c = 0; c < k.chemicals; ++c)
+                if (const int own = chemicalRelaxationPasses(k, c); own < k.relaxationPasses)
+                    fewer += (fewer.empty() ? "" : ", ") + model.chemicals()[std::size_t(c)].name +
+                             " " + std::to_string(own);
             report.notes.push_back(
                 {false, format("semi-implicit step: %d Jacobi passes on the weighted atlas, "
                                "stable at any dt; the slowest texel's residual factor is %.3g "
-                               "per pass (%.2g per step; the others' are smaller)",
+                               "per pass (%.2g per step; the others' are smaller)%s%s",
                                k.relaxationPasses, k.contraction,
-                               std::pow(k.contraction, k.relaxationPasses))});
+                               std::pow(k.contraction, k.relaxationPasses),
+                               fewer.empty() ? ""
+                                             : "; chemicals that diffuse more slowly reach "
+                                               "that residual in fewer: ",
+                               fewer.c_str())});
             return report;
         }
         report.notes.push_back(
