@@ -25,6 +25,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bench/bench_command.hpp"
 #include "cli/colour_flags.hpp"
 #include "cli/commands.hpp"
 #include "cli/knob_flags.hpp"
@@ -40,6 +41,7 @@ namespace {
 
 using morphogen::InputError;
 using morphogen::Session;
+namespace bench = morphogen::bench;
 namespace cli = morphogen::cli;
 namespace fuzz = morphogen::fuzz;
 
@@ -77,7 +79,7 @@ std::string parseApp(const std::vector<const char*>& argv) {
     app.require_subcommand(1);
     cli::addRenderCommand(app);
     cli::addPresetsCommand(app);
-    cli::addBenchCommand(app);
+    bench::addBenchCommand(app);
     cli::addPropagatorCommand(app);
     cli::addGalleryCommand(app);
     cli::addMapCommand(app);

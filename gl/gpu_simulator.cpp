@@ -537,18 +537,6 @@ void GpuSimulator::relax(bool local) {
     }
 }
 
-CopyPass::CopyPass(int width, int height, int chemicals)
-    : m_pingPong(width, height, stateFormat(chemicals), GL_REPEAT, stateTextures(chemicals)) {
-    const int textures = stateTextures(chemicals);
-    m_program =
-        Program({embeddedShader("glsl/fullscreen.vert")}, {embeddedShader("glsl/copy.frag")},
-                {"STATE_TEXTURES " + std::to_string(textures)});
-    m_program.use();
-    for (int t = 0; t < textures; ++t)
-        glUniform1i(m_program.uniform(("uState" + std::to_string(t)).c_str()), kStateUnits[t]);
-    glUniform2f(m_program.uniform("uInvSize"), 1.0f / float(width), 1.0f / float(height));
-}
-
 void GpuSimulator::setLiveUniforms(const Program& program) const {
     using Form = DiffusionOperator::Form;
     const ReactionModel& model = *m_model;

@@ -166,17 +166,4 @@ private:
 // test of the GLSL and C++ reactions).
 std::vector<ShaderPiece> stepFragmentPieces(const ReactionModel& model, const StepConstants& k);
 
-// The copy pass the benchmark measures the step against: same format, same
-// size, same number of state textures, one fetch per texel, same ping-pong.
-class CopyPass {
-public:
-    // The textures a simulation of `chemicals` chemicals steps.
-    CopyPass(int width, int height, int chemicals);
-    void run(int steps) { m_pingPong.run(m_program, steps); }
-
-private:
-    Program m_program;
-    PingPong m_pingPong;
-};
-
 } // namespace morphogen::gl

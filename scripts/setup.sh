@@ -11,7 +11,7 @@ packages=(
   libglfw3-dev libglm-dev libosmesa6-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0
   libgl1-mesa-dri
   libopenimageio-dev libtinygltf-dev libstb-dev libeigen3-dev nlohmann-json3-dev
-  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev libmeshoptimizer-dev
+  libcli11-dev libgtest-dev libgmock-dev libimgui-dev libmeshoptimizer-dev
   libtinyobjloader-dev libcgal-dev
   xvfb xauth
   clang libclang-rt-14-dev libfuzzer-14-dev libomp-dev

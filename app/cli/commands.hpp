@@ -4,12 +4,12 @@
 
 namespace morphogen::cli {
 
-// Each subcommand registers its flags and a callback that does the work. The
+// Each subcommand registers its flags and a callback that does the work (the
+// bench's is in app/bench, bench_command.hpp). The
 // callbacks throw morphogen::InputError for bad input (exit 2) and other
 // exceptions for everything else (exit 1).
 void addRenderCommand(CLI::App& app);
 void addPresetsCommand(CLI::App& app);
-void addBenchCommand(CLI::App& app);
 void addPropagatorCommand(CLI::App& app);
 void addGalleryCommand(CLI::App& app);
 void addMapCommand(CLI::App& app);

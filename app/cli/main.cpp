@@ -5,7 +5,7 @@
 #include <new>
 #include <string>
 
-#include "cli/bench_memory.hpp"
+#include "bench/bench_command.hpp"
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "core/base/errors.hpp"
@@ -14,7 +14,6 @@
 
 int main(int argc, char** argv) {
     morphogen::cli::tuneOpenMpForTheDesigner(argc, argv);
-    morphogen::cli::writePeakMemoryAtExit(); // for `bench`'s memory rows, when they ask
     morphogen::cli::installSignalHandlers(); // an interrupted write leaves no temporaries
     CLI::App app{"Morphogen: reaction-diffusion textures (Turing, Gray-Scott) on the GPU or CPU",
                  "morphogen"};
@@ -28,7 +27,7 @@ int main(int argc, char** argv) {
                std::to_string(kMaxJsonDepth) + " levels deep (README.md, Limits).");
     morphogen::cli::addRenderCommand(app);
     morphogen::cli::addPresetsCommand(app);
-    morphogen::cli::addBenchCommand(app);
+    morphogen::bench::addBenchCommand(app);
     morphogen::cli::addPropagatorCommand(app);
     morphogen::cli::addGalleryCommand(app);
     morphogen::cli::addMapCommand(app);

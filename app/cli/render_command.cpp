@@ -10,6 +10,7 @@
 #include "cli/flag_values.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/knob_flags.hpp"
+#include "cli/peak_memory.hpp"
 #include "cli/perturb_flags.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_frames.hpp"
@@ -485,7 +486,10 @@ void addRenderCommand(CLI::App& app) {
     addSettleFlags(*cmd, flags->settle);
     addSurfaceFlags(*cmd, flags->surface);
     addPerturbFlags(*cmd, flags->perturb);
-    cmd->callback([flags] { render(*flags); });
+    cmd->callback([flags] {
+        writePeakMemoryAtExit(); // for `bench`'s memory rows, when they ask
+        render(*flags);
+    });
 }
 
 } // namespace morphogen::cli

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 // What the memory rows of `morphogen bench` render.
 struct MemoryBench {
@@ -23,16 +23,11 @@ constexpr int kMemoryBenchSteps = 10;
 // a `morphogen render --out x.png` of the preset at each size, each run in a
 // child process of this executable, against the state it simulates (cells x
 // chemicals x 4 bytes). The child reports its own peak (VmHWM, see
-// writePeakMemoryAtExit): wait4's ru_maxrss would be at least the bench's
+// cli/peak_memory.hpp): wait4's ru_maxrss would be at least the bench's
 // own peak, which Linux carries into a child at exec. The same render at 16x16
 // gives the process's fixed cost (libraries, the GL driver), so a row reports
 // both its peak over the state and its growth above that baseline over the
 // state (the render's own memory; the goal is about 3 or less).
 nlohmann::json benchMemory(const MemoryBench& bench);
 
-// With $MORPHOGEN_PEAK_MEMORY_FILE set (by the memory rows, for the render
-// they start), writes this process's peak resident memory in kB (VmHWM of
-// /proc/self/status) to that file when it exits. Called first thing in main.
-void writePeakMemoryAtExit();
-
-} // namespace morphogen::cli
+} // namespace morphogen::bench

@@ -1,5 +1,5 @@
-#include "cli/bench_surface.hpp"
-#include "cli/bench_timing.hpp"
+#include "bench/bench_surface.hpp"
+#include "bench/bench_timing.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -30,7 +30,7 @@
 #include "core/surface/surface_setup.hpp"
 #include "gl/gpu_simulator.hpp"
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 namespace {
 
@@ -413,4 +413,4 @@ nlohmann::json benchSurface(bool gpu, bool cpu, double seconds) {
             {"session_step", stepCostRows(backends, file.path, seconds)}};
 }
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 // The resolution rows of `morphogen bench` (issue: the same look at any
 // size): each preset rendered as `render --preset P --size N` renders it
@@ -28,4 +28,4 @@ void checkResolutionFlags(const ResolutionBenchFlags& flags);
 nlohmann::json benchResolution(const ResolutionBenchFlags& flags, const std::string& context,
                                const std::string& gpuDevice);
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

@@ -1,17 +1,17 @@
-#include "cli/bench_models.hpp"
+#include "bench/bench_models.hpp"
 
 #include <algorithm>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
 
-#include "cli/bench_timing.hpp"
+#include "bench/bench_timing.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/session/session.hpp"
 #include "core/sim/cpu_simulator.hpp"
 #include "gl/gpu_simulator.hpp"
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 namespace {
 
@@ -87,4 +87,4 @@ nlohmann::json benchModels(const std::vector<int>& sizes, bool gpu, bool cpu, do
     return rows;
 }
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

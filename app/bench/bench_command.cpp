@@ -10,13 +10,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/bench_designer.hpp"
-#include "cli/bench_domains.hpp"
-#include "cli/bench_memory.hpp"
-#include "cli/bench_models.hpp"
-#include "cli/bench_resolution.hpp"
-#include "cli/bench_surface.hpp"
-#include "cli/bench_timing.hpp"
+#include "bench/bench_command.hpp"
+#include "bench/bench_copy_pass.hpp"
+#include "bench/bench_designer.hpp"
+#include "bench/bench_domains.hpp"
+#include "bench/bench_memory.hpp"
+#include "bench/bench_models.hpp"
+#include "bench/bench_resolution.hpp"
+#include "bench/bench_surface.hpp"
+#include "bench/bench_timing.hpp"
 #include "cli/commands.hpp"
 #include "core/analysis/pattern_stats.hpp"
 #include "core/base/errors.hpp"
@@ -29,7 +31,7 @@
 #include "gl/backend.hpp"
 #include "gl/gpu_simulator.hpp"
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 namespace {
 
@@ -239,7 +241,7 @@ nlohmann::json throughputRows(const Session& base, const BenchFlags& f, bool gpu
             gpuStep = measureStepsPerSecond([&](int k) { gpu.run(k); }, [] { glFinish(); },
                                             f.seconds, batch);
             std::fprintf(stderr, "bench: %dx%d gpu copy...\n", n, n);
-            gl::CopyPass copy(n, n, int(s.reactionModel().chemicals().size()));
+            CopyPass copy(n, n, int(s.reactionModel().chemicals().size()));
             gpuCopy = measureStepsPerSecond([&](int k) { copy.run(k); }, [] { glFinish(); },
                                             f.seconds, batch);
             row["gpu_step_iterations_per_s"] = gpuStep;
@@ -463,4 +465,4 @@ void addBenchCommand(CLI::App& app) {
     cmd->callback([flags] { bench(*flags); });
 }
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

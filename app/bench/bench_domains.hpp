@@ -2,7 +2,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 // The domain rows of `morphogen bench`, printed and returned as JSON:
 // throughput per texel of the cube and rotated-tile atlases, plain and with
@@ -14,4 +14,4 @@ namespace morphogen::cli {
 // run when `gpu` is true (a context is current); `seconds` per measurement.
 nlohmann::json benchDomains(bool gpu, bool cpu, double seconds);
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

@@ -1,4 +1,4 @@
-#include "cli/bench_designer.hpp"
+#include "bench/bench_designer.hpp"
 
 #include <algorithm>
 #include <array>
@@ -14,12 +14,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/bench_timing.hpp"
+#include "bench/bench_timing.hpp"
 #include "core/models/initial_condition.hpp"
 #include "core/session/session.hpp"
 #include "core/sim/cpu_simulator.hpp"
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 namespace {
 
@@ -210,4 +210,4 @@ nlohmann::json benchDesigner(const DesignerBench& bench) {
     return {{"runs", rows}, {"goal", goal}};
 }
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

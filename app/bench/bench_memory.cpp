@@ -1,4 +1,4 @@
-#include "cli/bench_memory.hpp"
+#include "bench/bench_memory.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -16,42 +16,23 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/peak_memory.hpp"
 #include "core/session/session.hpp"
 #include "core/sim/runner.hpp"
 
 extern char** environ;
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr const char* kPeakMemoryEnv = "MORPHOGEN_PEAK_MEMORY_FILE";
 
 struct ChildRun {
     int exitCode = -1;
     double peakMb = 0;     // its VmHWM
     std::string lastError; // the last line of its stderr when it failed
 };
-
-// This process's peak resident memory in kB (the high-water mark of its
-// address space since exec), or -1 where /proc is not there.
-long long peakResidentKb() {
-    std::ifstream in("/proc/self/status");
-    std::string line;
-    while (std::getline(in, line))
-        if (line.rfind("VmHWM:", 0) == 0)
-            return std::atoll(line.c_str() + 6);
-    return -1;
-}
-
-void writePeak() {
-    if (const char* path = std::getenv(kPeakMemoryEnv)) {
-        std::ofstream out(path);
-        out << peakResidentKb() << "\n";
-    }
-}
 
 std::string lastLine(const fs::path& file) {
     std::ifstream in(file);
@@ -68,9 +49,9 @@ ChildRun runChild(const std::vector<std::string>& args, const fs::path& errFile,
                   const fs::path& peakFile) {
     std::vector<std::string> env;
     for (char** e = environ; *e; ++e)
-        if (std::string(*e).rfind(std::string(kPeakMemoryEnv) + "=", 0) != 0)
+        if (std::string(*e).rfind(std::string(cli::kPeakMemoryEnv) + "=", 0) != 0)
             env.emplace_back(*e);
-    env.push_back(std::string(kPeakMemoryEnv) + "=" + peakFile.string());
+    env.push_back(std::string(cli::kPeakMemoryEnv) + "=" + peakFile.string());
     std::vector<char*> envp;
     for (std::string& e : env)
         envp.push_back(e.data());
@@ -147,11 +128,6 @@ ChildRun renderOnce(const MemoryBench& bench, const std::string& backend, int si
 
 } // namespace
 
-void writePeakMemoryAtExit() {
-    if (std::getenv(kPeakMemoryEnv))
-        std::atexit(writePeak);
-}
-
 nlohmann::json benchMemory(const MemoryBench& bench) {
     nlohmann::json rows = nlohmann::json::array();
     const Session base = loadPreset(bench.preset);
@@ -210,4 +186,4 @@ nlohmann::json benchMemory(const MemoryBench& bench) {
     return rows;
 }
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

@@ -1,4 +1,4 @@
-#include "cli/bench_resolution.hpp"
+#include "bench/bench_resolution.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -20,7 +20,7 @@
 #include "core/sim/segments.hpp"
 #include "gl/backend.hpp"
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 namespace {
 
@@ -89,15 +89,15 @@ struct Rendered {
 // `session` at its size as `render --preset` runs it: until settled (the
 // preset default, no --steps), its stability check, the automatic plan.
 Rendered renderAsRender(Session session, const gl::Backend& backend) {
-    SettleRun settle(SettleFlags{}, session, true, false);
-    checkStability(session, false);
+    cli::SettleRun settle(cli::SettleFlags{}, session, true, false);
+    cli::checkStability(session, false);
     Rendered r;
     r.cellSize = session.cellSize();
     r.plan = describePlan(session);
     r.chemical = colormapChemical(session.colormap, session.outputModel());
-    Progress progress(session.name, 1); // carries the settle note; never drawn here
+    cli::Progress progress(session.name, 1); // carries the settle note; never drawn here
     RunOptions options;
-    options.chunk = runChunk(session);
+    options.chunk = cli::runChunk(session);
     settle.attach(options, progress);
     const auto start = Clock::now();
     RunResult result = runSession(session, backend.makeSimulator, options);
@@ -338,4 +338,4 @@ nlohmann::json benchResolution(const ResolutionBenchFlags& flags, const std::str
     return report;
 }
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

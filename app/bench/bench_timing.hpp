@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 // Runs batches of `batch` steps until `seconds` have passed; returns steps/s.
 // `finish` must wait for the work to complete (glFinish on the GPU).
@@ -23,4 +23,4 @@ double measureStepsPerSecond(Run&& run, Finish&& finish, double seconds, int bat
     return steps / elapsed;
 }
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

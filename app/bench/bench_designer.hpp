@@ -4,7 +4,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 // What the designer rows of `morphogen bench` run.
 struct DesignerBench {
@@ -27,4 +27,4 @@ struct DesignerBench {
 // display).
 nlohmann::json benchDesigner(const DesignerBench& bench);
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

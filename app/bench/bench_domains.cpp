@@ -1,5 +1,5 @@
-#include "cli/bench_domains.hpp"
-#include "cli/bench_timing.hpp"
+#include "bench/bench_domains.hpp"
+#include "bench/bench_timing.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -25,7 +25,7 @@
 #include "core/surface/surface_setup.hpp"
 #include "gl/gpu_simulator.hpp"
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 namespace {
 
@@ -297,4 +297,4 @@ nlohmann::json benchDomains(bool gpu, bool cpu, double seconds) {
             {"sweep", sweepRows(backends, seconds)}};
 }
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

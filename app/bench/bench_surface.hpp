@@ -2,7 +2,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 // The surface rows of `morphogen bench` (issue 11), printed and returned as
 // JSON: the seconds from a mesh file to a running atlas for a model of about
@@ -16,4 +16,4 @@ namespace morphogen::cli {
 // of a texel's size. `seconds` per measurement.
 nlohmann::json benchSurface(bool gpu, bool cpu, double seconds);
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-namespace morphogen::cli {
+namespace morphogen::bench {
 
 // The model rows of `morphogen bench`, printed and returned as JSON: the
 // watercolour model's explicit step against a Gray-Scott step of the same
@@ -14,4 +14,4 @@ namespace morphogen::cli {
 // `seconds` per measurement, split over the rounds.
 nlohmann::json benchModels(const std::vector<int>& sizes, bool gpu, bool cpu, double seconds);
 
-} // namespace morphogen::cli
+} // namespace morphogen::bench
