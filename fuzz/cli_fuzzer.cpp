@@ -87,6 +87,7 @@ std::string parseApp(const std::vector<const char*>& argv) {
     cli::addColourCommand(app);
     cli::addMeshCommands(app);
     cli::addDesignCommand(app);
+    cli::addCompletionCommand(app);
     try {
         app.parse(int(argv.size()), argv.data());
     } catch (const ParseOnlyApp::Parsed&) {

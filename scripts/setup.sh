@@ -3,6 +3,8 @@
 # into build/. Idempotent: a second run installs nothing and rebuilds only
 # what changed. Used by scripts/render-default.sh, scripts/test.sh and CI.
 # --packages-only: install the packages, build nothing (scripts/sanitize.sh).
+# --target NAME...: build only those targets (scripts/render-default.sh builds
+#   the morphogen command alone, not the tests and fuzz replays).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -32,9 +34,14 @@ else
 fi
 
 [ "${1:-}" = "--packages-only" ] && exit 0
+targets=()
+if [ "${1:-}" = "--target" ]; then
+  shift
+  targets=(--target "$@")
+fi
 
 echo "==> setup: configuring (build/)"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-echo "==> setup: building"
-cmake --build build --parallel "$(nproc)"
+echo "==> setup: building${targets[*]:+ ${targets[*]:1}}"
+cmake --build build --parallel "$(nproc)" "${targets[@]}"
 echo "==> setup: done"

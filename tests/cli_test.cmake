@@ -9,6 +9,30 @@ set(failures 0)
 include(${CMAKE_CURRENT_LIST_DIR}/cli_run.cmake)
 
 run(0 "" --help)
+run(0 "" --version)
+if(NOT last_stdout MATCHES "^morphogen [0-9]+\\.[0-9]+\\.[0-9]+")
+  message(SEND_ERROR "--version prints '${last_stdout}', not 'morphogen X.Y.Z'")
+endif()
+# Bash completion, generated from the CLI: loaded into a real bash, it
+# completes a subcommand, a flag of it and a preset name.
+run(0 "" completion bash)
+file(WRITE "${WORK}/completion.bash" "${last_stdout}")
+run(2 "shell 'tcsh' is not supported" completion tcsh)
+foreach(case "morphogen ren|1|render" "morphogen render --pre|2|--preset"
+             "morphogen render --preset turk_la|3|turk_large_spots"
+             "morphogen mesh-info --wr|2|--wrap")
+  string(REPLACE "|" ";" parts "${case}")
+  list(GET parts 0 words)
+  list(GET parts 1 cword)
+  list(GET parts 2 want)
+  execute_process(COMMAND bash -c "source '${WORK}/completion.bash'; COMP_WORDS=(${words}); COMP_CWORD=${cword}; _morphogen; echo \"\${COMPREPLY[*]}\""
+    RESULT_VARIABLE rc OUTPUT_VARIABLE got OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT rc EQUAL 0 OR NOT got STREQUAL want)
+    message(SEND_ERROR "completion of '${words}': want '${want}', got '${got}' (exit ${rc})")
+  else()
+    message(STATUS "ok: completion of '${words}' -> ${got}")
+  endif()
+endforeach()
 run(0 "" render --help)
 run(0 "" presets)
 string(FIND "${last_stdout}" "gs_coral" at)

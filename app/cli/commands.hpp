@@ -21,6 +21,9 @@ void addMeshCommands(CLI::App& app);
 void addTileStatsCommand(CLI::App& app);
 // The interactive designer (ui/): a window.
 void addDesignCommand(CLI::App& app);
+// `completion bash`: a completion script generated from `app`'s commands and
+// flags (add it last, after the commands it lists).
+void addCompletionCommand(CLI::App& app);
 // Before anything else in main: for `morphogen design`, restarts the process
 // once with OpenMP's spin-wait shortened (GOMP_SPINCOUNT, which libgomp reads
 // only as it loads). The designer alternates bursts of simulation with

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
     morphogen::cli::installSignalHandlers(); // an interrupted write leaves no temporaries
     CLI::App app{"Morphogen: reaction-diffusion textures (Turing, Gray-Scott) on the GPU or CPU",
                  "morphogen"};
+    // CLI11 answers --version before it asks for a subcommand.
+    app.set_version_flag("--version", std::string("morphogen ") + MORPHOGEN_VERSION);
     app.require_subcommand(1);
     using namespace morphogen;
     app.footer("Limits: grid side " + std::to_string(kMaxGridSide) + ", " +
@@ -36,11 +38,14 @@ int main(int argc, char** argv) {
     morphogen::cli::addMeshCommands(app);
     morphogen::cli::addTileStatsCommand(app);
     morphogen::cli::addDesignCommand(app);
+    morphogen::cli::addCompletionCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         // Unknown flags, missing values and the like are bad input.
