@@ -53,6 +53,16 @@ endforeach()
 if(EXISTS "${WORK}/a_frames/frame_00003.png" OR NOT EXISTS "${WORK}/a.png")
   message(SEND_ERROR "--frames 3 wrote a fourth frame, or no --out image")
 endif()
+# A cascade whose colour map names a chemical of its last stage only
+# (turk_giraffe's g2): the frames of its first stage show that stage's own
+# display chemical, and every frame is written.
+run(0 "4 frames into giraffe_frames" ${nopath} render --preset turk_giraffe --size 32 --backend cpu
+    --frames 4 --out giraffe.png)
+foreach(i 0 1 2 3)
+  if(NOT EXISTS "${WORK}/giraffe_frames/frame_0000${i}.png")
+    message(SEND_ERROR "turk_giraffe --frames 4 did not write giraffe_frames/frame_0000${i}.png")
+  endif()
+endforeach()
 run(0 "" ${nopath} ${small} --every 20 --out b.png --frames-dir every)
 foreach(i 0 1 2)
   expect_same(a_frames/frame_0000${i}.png every/frame_0000${i}.png)

@@ -87,9 +87,17 @@ RunResult renderFrames(const Session& session, const SimulatorFactory& makeSimul
             frames.written(index);
             return;
         }
+        // An earlier stage of a cascade whose model lacks the colour map's
+        // chemical (turk_giraffe's spots before the net's g2) shows its own
+        // display chemical over its own display range.
+        const bool ownChemical =
+            !session.colormap.chemical.empty() && m.chemicalIndex(session.colormap.chemical) < 0;
+        const int chemical =
+            ownChemical ? m.displayChemical() : colormapChemical(session.colormap, m);
+        const FrameLevels shown = ownChemical ? frameLevels(m, chemical, "") : levels;
         writeColourMapped(frames.path(index),
-                          ColourMapRows(sofar.state, colormapChemical(session.colormap, m),
-                                        session.colormap, levels.low, levels.high, session.edges),
+                          ColourMapRows(sofar.state, chemical, session.colormap, shown.low,
+                                        shown.high, session.edges),
                           8);
         frames.written(index);
     };
