@@ -3,7 +3,8 @@
 # out/morphogen.png (plus out/morphogen.json, the session that reproduces it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh --target morphogen # the command alone, not the test suite
+# The command, its completion and man page (cmake --install), not the test suite.
+bash scripts/setup.sh --target morphogen morphogen_docs
 mkdir -p out
 echo "==> render: default preset -> out/morphogen.png"
 ./build/morphogen render --out out/morphogen.png "$@"

@@ -15,7 +15,7 @@ packages=(
   libopenimageio-dev libtinygltf-dev libstb-dev libeigen3-dev nlohmann-json3-dev
   libcli11-dev libgtest-dev libgmock-dev libimgui-dev libmeshoptimizer-dev
   libtinyobjloader-dev libcgal-dev
-  xvfb xauth
+  xvfb xauth help2man
   clang libclang-rt-14-dev libfuzzer-14-dev libomp-dev
 )
 
