@@ -141,8 +141,8 @@ StabilityReport checkSessionStability(Session& session, bool verbose) {
                                k.relaxationPasses, k.contraction,
                                std::pow(k.contraction, k.relaxationPasses),
                                fewer.empty() ? ""
-                                             : "; chemicals that diffuse more slowly reach "
-                                               "that residual in fewer: ",
+                                             : "; chemicals that get there in fewer passes "
+                                               "stop then: ",
                                fewer.c_str())});
             return report;
         }
