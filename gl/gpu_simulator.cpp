@@ -483,6 +483,11 @@ void GpuSimulator::run(int steps) {
             m_pingPong.run(m_program, steps);
         return;
     }
+    // Each chemical stops after its own passes (chemicalRelaxationPasses, as
+    // the CPU's), the same in every step of the run.
+    std::array<int, kMaxChemicals> own{};
+    for (int c = 0; c < m_k.chemicals; ++c)
+        own[std::size_t(c)] = chemicalRelaxationPasses(m_k, c);
     for (int i = 0; i < steps; ++i) {
         // rhs = c + dt f(c), then relaxation passes from x0 = c; localized,
         // both inside the active tiles' rectangles only (the passes read the
@@ -503,17 +508,13 @@ void GpuSimulator::run(int steps) {
         } else {
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }
-        relax(local);
+        relax(local, own);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void GpuSimulator::relax(bool local) {
-    // Each chemical stops after its own passes (chemicalRelaxationPasses, as
-    // the CPU's): the passes run in groups with one set of relaxing chemicals.
-    std::array<int, kMaxChemicals> own{};
-    for (int c = 0; c < m_k.chemicals; ++c)
-        own[std::size_t(c)] = chemicalRelaxationPasses(m_k, c);
+void GpuSimulator::relax(bool local, const std::array<int, kMaxChemicals>& own) {
+    // The passes run in groups with one set of relaxing chemicals.
     int done = 0;
     while (done < m_k.relaxationPasses) {
         std::array<float, kMaxChemicals> relaxing{};

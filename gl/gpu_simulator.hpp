@@ -116,8 +116,9 @@ private:
     void buildPrograms();
     void bindAuxiliaryTextures() const;
     // A semi-implicit step's relaxation passes, after its right-hand side
-    // (in the active tiles' rectangles only when `local`).
-    void relax(bool local);
+    // (in the active tiles' rectangles only when `local`), `own[c]` of them
+    // for chemical c.
+    void relax(bool local, const std::array<int, kMaxChemicals>& own);
     // gpu_brush.cpp: the brush modes by what they write.
     void brushChemical(const Brush& brush);
     void brushFrozen(const Brush& brush);

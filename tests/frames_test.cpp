@@ -91,6 +91,28 @@ TEST(LockedLevels, FrameRangeFlagIsCheckedAndDefaultsToTheDisplayRange) {
     expectInputError([&] { frameLevels(m, 0, "0.5"); }, "--frame-range '0.5'");
 }
 
+// turk_giraffe colours its net's g2, a chemical of its last stage only: a
+// frame of its first stage (turing_turk) shows that model's display chemical
+// over its display range, a frame of the last stage the map as given with the
+// run's levels.
+TEST(LockedLevels, AnEarlierStageWithoutTheMapsChemicalShowsItsOwn) {
+    const Session s = loadPreset("turk_giraffe");
+    const ReactionModel& last = s.outputModel();
+    const ReactionModel& first = s.reactionModel();
+    ASSERT_LT(first.chemicalIndex(s.colormap.chemical), 0);
+    const FrameLevels levels = frameLevels(last, colormapChemical(s.colormap, last), "");
+    const FrameColouring early = frameColouring(s.colormap, first, levels);
+    const int shown = first.displayChemical();
+    EXPECT_EQ(early.spec.chemical, first.chemicals()[std::size_t(shown)].name);
+    EXPECT_EQ(early.spec.name, s.colormap.name);
+    EXPECT_EQ(early.levels.low, first.chemicals()[std::size_t(shown)].displayRange[0]);
+    EXPECT_EQ(early.levels.high, first.chemicals()[std::size_t(shown)].displayRange[1]);
+    const FrameColouring late = frameColouring(s.colormap, last, levels);
+    EXPECT_EQ(late.spec.chemical, s.colormap.chemical);
+    EXPECT_EQ(late.levels.low, levels.low);
+    EXPECT_EQ(late.levels.high, levels.high);
+}
+
 // Frames through a cascade: the last frame is runSession's final state exactly,
 // and each frame comes at its step.
 TEST(RunWithFrames, CascadeFramesComeFromTheOneRunAndEndOnItsResult) {

@@ -169,13 +169,13 @@ TEST(SurfaceMeasure, SpotsStayRoundOnAStretchedSurface) {
                 ++counted;
             }
         const double elongation = medianElongation(run.features, 12);
+        const double meanAlong = counted ? along / double(counted) : 0.0;
         std::printf("%s: %zu tiles of %dx%d, %zu spots (%zu of 12+ texels), median "
                     "elongation %.3f, mean |major axis . x| %.3f, area CV %.3f\n",
                     metric ? "corrected" : "uncorrected", std::size_t(tiles.atlas->tileCount()),
                     tiles.atlas->tileSize(), tiles.atlas->tileSize(), run.stats.count, counted,
-                    elongation, counted ? along / double(counted) : 0.0,
-                    run.stats.coefficientOfVariation);
-        return std::pair{elongation, counted ? along / double(counted) : 0.0};
+                    elongation, meanAlong, run.stats.coefficientOfVariation);
+        return std::pair{elongation, meanAlong};
     };
     const auto [corrected, correctedAlong] = shape(true);
     const auto [plain, plainAlong] = shape(false);

@@ -1,4 +1,5 @@
 #include "bench/bench_domains.hpp"
+#include "bench/bench_backends.hpp"
 #include "bench/bench_timing.hpp"
 
 #include <algorithm>
@@ -29,8 +30,6 @@ namespace morphogen::bench {
 
 namespace {
 
-using Make = std::function<std::unique_ptr<Simulator>(const Session&)>;
-
 // Steps per second of run(batch), after a warm-up batch, for `seconds`.
 double stepsPerSecond(const std::function<void(int)>& run, bool gpu, double seconds, int batch) {
     return measureStepsPerSecond(
@@ -40,12 +39,6 @@ double stepsPerSecond(const std::function<void(int)>& run, bool gpu, double seco
                 glFinish();
         },
         seconds, batch);
-}
-
-double sessionStepsPerSecond(const Session& s, const Make& make, bool gpu, double seconds) {
-    std::unique_ptr<Simulator> sim = make(s);
-    sim->setState(initialState(s));
-    return stepsPerSecond([&](int n) { sim->run(n); }, gpu, seconds, 20);
 }
 
 // Atlas texels per second over grid cells per second, same texture size.
@@ -284,13 +277,7 @@ nlohmann::json sweepRows(const std::vector<std::pair<std::string, Make>>& backen
 } // namespace
 
 nlohmann::json benchDomains(bool gpu, bool cpu, double seconds) {
-    std::vector<std::pair<std::string, Make>> backends;
-    if (gpu)
-        backends.emplace_back(
-            "gpu", [](const Session& s) { return std::make_unique<gl::GpuSimulator>(s); });
-    if (cpu)
-        backends.emplace_back("cpu",
-                              [](const Session& s) { return std::make_unique<CpuSimulator>(s); });
+    const std::vector<std::pair<std::string, Make>> backends = simulatorBackends(gpu, cpu);
     return {{"atlas", atlasRows(backends, seconds)},
             {"localized", localizedRows(backends)},
             {"localized_mesh", meshLocalizedRows(backends)},

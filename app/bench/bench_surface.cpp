@@ -1,4 +1,5 @@
 #include "bench/bench_surface.hpp"
+#include "bench/bench_backends.hpp"
 #include "bench/bench_timing.hpp"
 
 #include <algorithm>
@@ -27,6 +28,7 @@
 #include "core/sim/cpu_simulator.hpp"
 #include "core/sim/initial_state.hpp"
 #include "core/sim/segments.hpp"
+#include "core/sim/vector_clones.hpp"
 #include "core/surface/surface_setup.hpp"
 #include "gl/gpu_simulator.hpp"
 
@@ -35,11 +37,17 @@ namespace morphogen::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using Make = std::function<std::unique_ptr<Simulator>(const Session&)>;
 
 // The blob at level 6: 81,920 triangles, an organic shape near the issue's
 // 100k-triangle model that the simplifier has real work on.
 constexpr int kLargeMeshLevel = 6;
+
+std::size_t usedTexels(const Atlas& atlas) {
+    std::size_t used = 0;
+    for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
+        used += atlas.used(i) ? 1 : 0;
+    return used;
+}
 
 // A temporary file removed when it goes out of scope.
 struct TemporaryFile {
@@ -75,9 +83,7 @@ nlohmann::json meshToAtlasRow(const TriangleMesh& mesh, const std::string& path)
 
     std::printf("\n%-22s %9s %7s %9s %8s  %s\n", "mesh to atlas", "triangles", "tiles", "texels",
                 "seconds", "phases (s)");
-    std::size_t used = 0;
-    for (std::uint32_t i = 0; i < setup.tiles.atlas->cellCount(); ++i)
-        used += setup.tiles.atlas->used(i) ? 1 : 0;
+    const std::size_t used = usedTexels(*setup.tiles.atlas);
     std::printf("%-22s %9zu %7d %9zu %8.2f ", "blob level 6 (OBJ)", mesh.triangles.size(),
                 setup.tiles.atlas->tileCount(), used, total);
     nlohmann::json phases = nlohmann::json::object();
@@ -98,29 +104,12 @@ nlohmann::json meshToAtlasRow(const TriangleMesh& mesh, const std::string& path)
             {"phases", phases}};
 }
 
-double sessionStepsPerSecond(const Session& s, const Make& make, bool gpu, double seconds) {
-    std::unique_ptr<Simulator> sim = make(s);
-    sim->setState(initialState(s));
-    return measureStepsPerSecond([&](int n) { sim->run(n); },
-                                 [gpu] {
-                                     if (gpu)
-                                         glFinish();
-                                 },
-                                 seconds, 20);
-}
-
-// Global steps on the holes model's atlas (automatic budget, metric weights
-// with curvature scaling: its sample preset) against a flat grid of about as
-// many cells as the atlas has used texels, same model; at the automatic tile
-// size (4x4 texels at the preset's length: three quarters of the texels are
-// on a tile border and go through the connectivity map) and at 16x16. Steps
-// are engine steps: a session step on the atlas takes `substeps` of them
-// (the weights' stability bound), shown beside the fraction.
 // The holes model's sample preset on its atlas, set up once for the rows
-// that time it.
+// that time it, with its count of used texels.
 struct HolesAtlas {
     Session session;
     SurfaceSetup setup;
+    std::size_t used = 0;
 };
 
 // At the automatic tile size and at 16x16, with the explicit kernel whatever
@@ -133,11 +122,19 @@ std::vector<HolesAtlas> holesAtlases() {
         h.session.surface.tileSize = tileSize;
         h.session.integratorGiven = true;
         h.setup = setUpSurface(h.session);
+        h.used = usedTexels(*h.setup.tiles.atlas);
         out.push_back(std::move(h));
     }
     return out;
 }
 
+// Global steps on the holes model's atlas (automatic budget, metric weights
+// with curvature scaling: its sample preset) against a flat grid of about as
+// many cells as the atlas has used texels, same model; at the automatic tile
+// size (4x4 texels at the preset's length: three quarters of the texels are
+// on a tile border and go through the connectivity map) and at 16x16. Steps
+// are engine steps: a session step on the atlas takes `substeps` of them
+// (the weights' stability bound), shown beside the fraction.
 nlohmann::json throughputRows(const std::vector<std::pair<std::string, Make>>& backends,
                               const std::vector<HolesAtlas>& holes, double seconds) {
     nlohmann::json rows = nlohmann::json::array();
@@ -148,9 +145,7 @@ nlohmann::json throughputRows(const std::vector<std::pair<std::string, Make>>& b
         const SurfaceSetup& setup = h.setup;
         const Atlas& atlas = *setup.tiles.atlas;
         const int substeps = weightedSubsteps(*setup.weights);
-        std::size_t used = 0;
-        for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
-            used += atlas.used(i) ? 1 : 0;
+        const std::size_t used = h.used;
         Session grid = loadPreset("surface_curvature_spots_holes");
         grid.surface = {};
         const int side = int(std::lround(std::sqrt(double(used))));
@@ -183,13 +178,6 @@ nlohmann::json throughputRows(const std::vector<std::pair<std::string, Make>>& b
     return rows;
 }
 
-// The probes' vector clones, as the engine's kernels (cpu_kernels.cpp).
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define BENCH_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define BENCH_VECTOR_CLONES
-#endif
-
 // The least a weighted atlas step can do: the same planes read at the same
 // texels (each chemical's row and the rows above and below it, every weight
 // plane, and the right-hand side for a relaxation pass) and the same planes
@@ -198,9 +186,9 @@ nlohmann::json throughputRows(const std::vector<std::pair<std::string, Make>>& b
 // halo fills included), so that the ratio of the two is the kernels' own cost
 // over the memory traffic they cannot avoid.
 template <int N, bool Cross, bool Rhs>
-BENCH_VECTOR_CLONES void probeRows(const StepConstants& k, const std::uint8_t* chemicals,
-                                   const State& in, const State* rhs, State& out, int y0, int y1,
-                                   int x0, int x1) {
+MORPHOGEN_VECTOR_CLONES void probeRows(const StepConstants& k, const std::uint8_t* chemicals,
+                                       const State& in, const State* rhs, State& out, int y0,
+                                       int y1, int x0, int x1) {
     const int w = in.width();
     const std::size_t cells = in.cellCount();
     for (int y = y0; y < y1; ++y) {
@@ -276,9 +264,7 @@ nlohmann::json kernelProbeRows(const std::vector<HolesAtlas>& holes, double seco
     for (const HolesAtlas& h : holes) {
         const Session& s = h.session;
         const Atlas& atlas = *h.setup.tiles.atlas;
-        std::size_t used = 0;
-        for (std::uint32_t i = 0; i < atlas.cellCount(); ++i)
-            used += atlas.used(i) ? 1 : 0;
+        const std::size_t used = h.used;
         const StepConstants k = StepConstants::fromSession(s);
         const std::vector<std::array<std::uint32_t, 8>> diagonals =
             k.crossWeighted() ? atlasDiagonals(atlas) : std::vector<std::array<std::uint32_t, 8>>{};
@@ -353,9 +339,7 @@ nlohmann::json stepCostRows(const std::vector<std::pair<std::string, Make>>& bac
         onAtlas.integratorGiven = true;
         std::fprintf(stderr, "bench: session steps on %s...\n", name.c_str());
         const SurfaceSetup setup = setUpSurface(onAtlas);
-        std::size_t used = 0;
-        for (std::uint32_t i = 0; i < setup.tiles.atlas->cellCount(); ++i)
-            used += setup.tiles.atlas->used(i) ? 1 : 0;
+        const std::size_t used = usedTexels(*setup.tiles.atlas);
         Session semi = onAtlas;
         semi.integrator = Integrator::SemiImplicit;
         Session grid = loadPreset("turk_large_spots");
@@ -394,13 +378,7 @@ nlohmann::json stepCostRows(const std::vector<std::pair<std::string, Make>>& bac
 } // namespace
 
 nlohmann::json benchSurface(bool gpu, bool cpu, double seconds) {
-    std::vector<std::pair<std::string, Make>> backends;
-    if (gpu)
-        backends.emplace_back(
-            "gpu", [](const Session& s) { return std::make_unique<gl::GpuSimulator>(s); });
-    if (cpu)
-        backends.emplace_back("cpu",
-                              [](const Session& s) { return std::make_unique<CpuSimulator>(s); });
+    const std::vector<std::pair<std::string, Make>> backends = simulatorBackends(gpu, cpu);
     const TriangleMesh large = sampleMesh("blob", kLargeMeshLevel);
     TemporaryFile file{(std::filesystem::temp_directory_path() /
                         ("morphogen_bench_" + std::to_string(::getpid()) + ".obj"))

@@ -344,8 +344,9 @@ void render(const RenderFlags& flags) {
         if (frames && surface) {
             surfaceFrames.emplace(*surfaceSetup, backend.context.get(),
                                   gl::parseContextFlag(f.context));
-            draw = [&](const std::string& path, const RunResult& sofar, float low, float high) {
-                surfaceFrames->draw(path, sofar, low, high);
+            draw = [&](const std::string& path, const RunResult& sofar,
+                       const FrameColouring& colouring) {
+                surfaceFrames->draw(path, sofar, colouring);
             };
         }
         result =

@@ -82,22 +82,16 @@ RunResult renderFrames(const Session& session, const SimulatorFactory& makeSimul
             throw BlowUpError(os.str(), sofar.stepsDone, dt);
         }
         checkedStep = sofar.stepsDone;
+        const FrameColouring colouring = frameColouring(session.colormap, m, levels);
         if (draw) {
-            draw(frames.path(index), sofar, levels.low, levels.high);
+            draw(frames.path(index), sofar, colouring);
             frames.written(index);
             return;
         }
-        // An earlier stage of a cascade whose model lacks the colour map's
-        // chemical (turk_giraffe's spots before the net's g2) shows its own
-        // display chemical over its own display range.
-        const bool ownChemical =
-            !session.colormap.chemical.empty() && m.chemicalIndex(session.colormap.chemical) < 0;
-        const int chemical =
-            ownChemical ? m.displayChemical() : colormapChemical(session.colormap, m);
-        const FrameLevels shown = ownChemical ? frameLevels(m, chemical, "") : levels;
         writeColourMapped(frames.path(index),
-                          ColourMapRows(sofar.state, chemical, session.colormap, shown.low,
-                                        shown.high, session.edges),
+                          ColourMapRows(sofar.state, colormapChemical(colouring.spec, m),
+                                        colouring.spec, colouring.levels.low, colouring.levels.high,
+                                        session.edges),
                           8);
         frames.written(index);
     };

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/io/output_files.hpp"
+#include "core/output/frames.hpp"
 #include "core/session/session.hpp"
 #include "core/sim/runner.hpp"
 
@@ -39,9 +40,10 @@ void prepareFrames(FrameFlags& flags, const std::string& out, const Session& ses
 // values is a blow-up (BlowUpError naming the steps), never written.
 //
 // `draw`, when given, writes each frame instead (a session on a model: a
-// screenshot of the model, render_surface.hpp), with the locked levels.
-using FrameDrawer =
-    std::function<void(const std::string& path, const RunResult& sofar, float low, float high)>;
+// screenshot of the model, render_surface.hpp), coloured as `colouring` says
+// (the locked levels; frameColouring).
+using FrameDrawer = std::function<void(const std::string& path, const RunResult& sofar,
+                                       const FrameColouring& colouring)>;
 RunResult renderFrames(const Session& session, const SimulatorFactory& makeSimulator,
                        const RunOptions& options, const FrameFlags& flags, StagedSequence& frames,
                        const FrameDrawer& draw = {});

@@ -222,13 +222,22 @@ SurfaceFrames::SurfaceFrames(const SurfaceSetup& setup, gl::Context* context,
 
 SurfaceFrames::~SurfaceFrames() = default;
 
-void SurfaceFrames::draw(const std::string& path, const RunResult& sofar, float low, float high) {
+void SurfaceFrames::draw(const std::string& path, const RunResult& sofar,
+                         const FrameColouring& colouring) {
     if (m_context)
         m_context->makeCurrent();
     else if (!m_own)
         m_own = gl::createHeadlessContext(m_contextKind);
-    const SurfaceColours c = surfaceColours(sofar.state, sofar.completed, *m_setup.tiles.atlas,
-                                            std::make_pair(low, high), {}, m_display);
+    // An earlier stage's own chemical (frameColouring): surfaceColours reads
+    // the colour map from the session.
+    std::optional<Session> stage;
+    if (colouring.spec.chemical != sofar.completed.colormap.chemical) {
+        stage = sofar.completed;
+        stage->colormap = colouring.spec;
+    }
+    const SurfaceColours c =
+        surfaceColours(sofar.state, stage ? *stage : sofar.completed, *m_setup.tiles.atlas,
+                       std::make_pair(colouring.levels.low, colouring.levels.high), {}, m_display);
     m_display = c.displayAtlas;
     const TexturedMesh textured = texturedSurface(m_setup.tiles, c);
     if (m_renderer)

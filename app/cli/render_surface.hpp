@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/io/output_files.hpp"
+#include "core/output/frames.hpp"
 #include "core/sim/runner.hpp"
 #include "core/surface/display_atlas.hpp"
 #include "core/surface/surface_setup.hpp"
@@ -62,7 +63,7 @@ public:
     SurfaceFrames(const SurfaceFrames&) = delete;
     SurfaceFrames& operator=(const SurfaceFrames&) = delete;
 
-    void draw(const std::string& path, const RunResult& sofar, float low, float high);
+    void draw(const std::string& path, const RunResult& sofar, const FrameColouring& colouring);
 
 private:
     const SurfaceSetup& m_setup;

@@ -100,6 +100,17 @@ FrameLevels frameLevels(const ReactionModel& model, int chemical, const std::str
     return {low, high, "--frame-range"};
 }
 
+FrameColouring frameColouring(const ColorMapSpec& spec, const ReactionModel& stage,
+                              const FrameLevels& levels) {
+    if (spec.chemical.empty() || stage.chemicalIndex(spec.chemical) >= 0)
+        return {spec, levels};
+    FrameColouring own{spec, {}};
+    const int chemical = stage.displayChemical();
+    own.spec.chemical = stage.chemicals()[std::size_t(chemical)].name;
+    own.levels = frameLevels(stage, chemical, "");
+    return own;
+}
+
 std::vector<float> applyLockedColormap(const State& state, int chemical, const ColorMapSpec& spec,
                                        const FrameLevels& levels) {
     const ColourMapRows rows(state, chemical, spec, levels.low, levels.high);

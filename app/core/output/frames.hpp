@@ -51,6 +51,18 @@ struct FrameLevels {
 // else the model's display range of `chemical`.
 FrameLevels frameLevels(const ReactionModel& model, int chemical, const std::string& range);
 
+// How a frame of a run whose current stage has model `stage` is coloured:
+// `spec` with the run's locked `levels`, or, in an earlier stage of a cascade
+// whose model lacks the colour map's chemical (turk_giraffe's spots before the
+// net's g2), the same map on that stage's display chemical over its display
+// range.
+struct FrameColouring {
+    ColorMapSpec spec;
+    FrameLevels levels;
+};
+FrameColouring frameColouring(const ColorMapSpec& spec, const ReactionModel& stage,
+                              const FrameLevels& levels);
+
 // One chemical mapped through spec's colour map with locked levels: t =
 // (value - low) / (high - low), then windowed by spec.levels and clamped.
 // Non-finite values map to the low end. Interleaved RGB in [0, 1].

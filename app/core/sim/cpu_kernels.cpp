@@ -9,18 +9,7 @@
 #include <utility>
 
 #include "core/models/builtin_models.hpp"
-
-// GCC builds an AVX2 copy of each fused kernel beside the baseline x86-64
-// (SSE2) one and picks per machine when the program loads, so one binary
-// runs anywhere and uses 8-wide vectors where it can. Not "fma", nor
-// "arch=x86-64-v3", which implies it: GCC would then contract a * b + c into
-// fused multiply-adds, and the CPU results would stop matching the generic
-// path, older runs and llvmpipe bit for bit.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define MORPHOGEN_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define MORPHOGEN_VECTOR_CLONES
-#endif
+#include "core/sim/vector_clones.hpp"
 
 // The loops below must be inlined into the clones to be built for AVX2 too.
 // Lambdas holding a whole row's work need it said as well: GCC otherwise

@@ -219,27 +219,36 @@ PaddedAtlasStep::paddedFrozen(const std::vector<std::uint32_t>& frozen) const {
     return padded;
 }
 
-void PaddedAtlasStep::relaxPasses(const RelaxTileKernels& kernels, int passes, bool all,
-                                  const std::vector<std::uint32_t>& frozen, bool threaded) {
-    int own[kMaxChemicals] = {};
+void PaddedAtlasStep::planPasses(int passes) {
+    m_plan.own.fill(0);
+    m_plan.relaxed.clear();
+    m_plan.halos.clear();
     for (int c = 0; c < m_k.chemicals; ++c)
-        own[c] = chemicalRelaxationPasses(m_k, c, passes);
-    std::vector<std::uint8_t> relaxed;
-    std::vector<int> halos;
-    int pass = 0;
-    for (; pass < passes; ++pass) {
+        m_plan.own[std::size_t(c)] = chemicalRelaxationPasses(m_k, c, passes);
+    for (int pass = 0; pass < passes; ++pass) {
         // The chemicals still relaxing, and those of them whose halos this
-        // pass reads (those that diffuse).
-        relaxed.clear();
-        halos.clear();
+        // pass reads (those that diffuse); none left ends the passes.
+        std::vector<std::uint8_t> relaxed;
+        std::vector<int> halos;
         for (int c = 0; c < m_k.chemicals; ++c)
-            if (pass < own[c]) {
+            if (pass < m_plan.own[std::size_t(c)]) {
                 relaxed.push_back(std::uint8_t(c));
                 if (m_k.op.rates[std::size_t(c)] != 0.0f)
                     halos.push_back(c);
             }
         if (relaxed.empty())
             break;
+        m_plan.relaxed.push_back(std::move(relaxed));
+        m_plan.halos.push_back(std::move(halos));
+    }
+}
+
+void PaddedAtlasStep::relaxPasses(const RelaxTileKernels& kernels, bool all,
+                                  const std::vector<std::uint32_t>& frozen, bool threaded) {
+    const int passes = int(m_plan.relaxed.size());
+    for (int pass = 0; pass < passes; ++pass) {
+        const std::vector<std::uint8_t>& relaxed = m_plan.relaxed[std::size_t(pass)];
+        const std::vector<int>& halos = m_plan.halos[std::size_t(pass)];
         const RelaxTileKernel kernel = kernels.byCount[relaxed.size()];
         const std::array<float*, kMaxChemicals> planes = inPlanes();
         // As step: a block of tiles fills its own halos, then reads only them.
@@ -254,7 +263,7 @@ void PaddedAtlasStep::relaxPasses(const RelaxTileKernels& kernels, int passes, b
     // it to the other buffer. Those left in m_out after an odd number of
     // such swaps come back once.
     for (int c = 0; c < m_k.chemicals; ++c)
-        if ((pass - std::min(own[c], pass)) % 2 == 1)
+        if ((passes - std::min(m_plan.own[std::size_t(c)], passes)) % 2 == 1)
             std::copy_n(m_out.plane(c), m_out.cellCount(), m_in.plane(c));
 }
 
@@ -266,7 +275,8 @@ void PaddedAtlasStep::relax(const RelaxTileKernels& kernels, const StepConstants
         m_rhs = State(m_in.width(), m_in.height(), m_in.channels());
     load(state, m_in);
     load(rhs, m_rhs);
-    relaxPasses(kernels, passes, true, paddedFrozen(frozen), threaded);
+    planPasses(passes);
+    relaxPasses(kernels, true, paddedFrozen(frozen), threaded);
     for (int t = 0; t < m_atlas.tileCount(); ++t)
         store(t, state);
 }
@@ -279,6 +289,7 @@ void PaddedAtlasStep::runSemiImplicit(StepTileKernel rhsKernel, const RelaxTileK
     if (m_rhs.cellCount() == 0)
         m_rhs = State(m_in.width(), m_in.height(), m_in.channels());
     const std::vector<std::uint32_t> frozenPadded = paddedFrozen(frozen);
+    planPasses(passes);
     load(state, m_in);
     const bool all = active.empty();
     if (!all)
@@ -289,7 +300,7 @@ void PaddedAtlasStep::runSemiImplicit(StepTileKernel rhsKernel, const RelaxTileK
         forEachBlock(all, threaded, [&](int, int, int y0, int y1, int x0, int x1) {
             rhsKernel(m_k, m_in, m_rhs, y0, y1, x0, x1);
         });
-        relaxPasses(kernels, passes, all, frozenPadded, threaded);
+        relaxPasses(kernels, all, frozenPadded, threaded);
     }
     if (all)
         for (int t = 0; t < m_atlas.tileCount(); ++t)

@@ -68,7 +68,12 @@ private:
     std::uint32_t paddedCell(int tile, int u, int v) const;
     std::vector<std::uint32_t> paddedFrozen(const std::vector<std::uint32_t>& frozen) const;
     void keepFrozen(const std::vector<std::uint32_t>& frozen);
-    void relaxPasses(const RelaxTileKernels& kernels, int passes, bool all,
+    // The passes of a semi-implicit step for the constants prepare() set:
+    // each chemical's count (chemicalRelaxationPasses of `passes`) and, per
+    // pass, the chemicals relaxing and the halos they read. Made once per
+    // run, not per step.
+    void planPasses(int passes);
+    void relaxPasses(const RelaxTileKernels& kernels, bool all,
                      const std::vector<std::uint32_t>& frozen, bool threaded);
     // Calls block(firstTile, endTile, y0, y1, x0, x1) for every row of tiles
     // (all) or every run of active tiles (m_runs), in parallel.
@@ -106,6 +111,12 @@ private:
         int first = 0, end = 0;
     };
     std::vector<TileRun> m_runs;
+    struct PassPlan {
+        std::array<int, kMaxChemicals> own{};           // passes per chemical
+        std::vector<std::vector<std::uint8_t>> relaxed; // per pass
+        std::vector<std::vector<int>> halos;            // per pass
+    };
+    PassPlan m_plan;
     State m_rhs;                  // relax's right-hand side, padded (made on its first call)
     std::vector<int> m_diffusing; // chemicals with a rate other than 0
     State m_in, m_out;
